@@ -1,0 +1,25 @@
+# Every third-party library comes from Debian's packages (scripts/setup.sh).
+find_package(MPI REQUIRED COMPONENTS C CXX)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc)
+pkg_check_modules(SLEPC REQUIRED IMPORTED_TARGET SLEPc)
+pkg_check_modules(HDF5_MPI REQUIRED IMPORTED_TARGET hdf5-openmpi)
+pkg_check_modules(YAML_CPP REQUIRED IMPORTED_TARGET yaml-cpp)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(nlohmann_json 3 REQUIRED)
+find_library(METIS_LIBRARY metis REQUIRED)
+find_path(METIS_INCLUDE_DIR metis.h REQUIRED)
+
+# Third-party headers are system headers: their warnings are not ours to fix.
+foreach(target PkgConfig::PETSC PkgConfig::SLEPC PkgConfig::HDF5_MPI PkgConfig::YAML_CPP)
+  get_target_property(dirs ${target} INTERFACE_INCLUDE_DIRECTORIES)
+  if(dirs)
+    set_target_properties(${target} PROPERTIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${dirs}")
+  endif()
+endforeach()
+
+find_program(TANKFSI_PYTHON /usr/bin/python3 NO_DEFAULT_PATH)
+if(NOT TANKFSI_PYTHON)
+  find_program(TANKFSI_PYTHON python3 REQUIRED)
+endif()
+find_package(Catch2 2 REQUIRED)

@@ -1,0 +1,47 @@
+# Test registration helpers.
+#
+# tankfsi_add_catch_test(NAME n SOURCES s.cpp... LIBRARIES l... LABELS unit RANKS 1 2 4)
+#   builds one Catch2 executable (MPI-aware main, rank 0 prints) and registers one
+#   ctest per rank count, run under mpiexec: n.np1, n.np2, n.np4.
+#   More ranks than cores is allowed (--oversubscribe): tests check decomposition
+#   logic, not speed.
+# tankfsi_add_mpi_test(NAME n RANKS 1 2 COMMAND exe args... LABELS l)
+#   registers an arbitrary command under mpiexec the same way.
+
+set(TANKFSI_TEST_ENVIRONMENT
+  OMPI_ALLOW_RUN_AS_ROOT=1
+  OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+  OMPI_MCA_rmaps_base_oversubscribe=1
+  OMPI_MCA_btl_vader_single_copy_mechanism=none
+  TANKFSI_PYTHON=${TANKFSI_PYTHON})
+
+function(tankfsi_add_mpi_test)
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "RANKS;COMMAND;LABELS" ${ARGN})
+  if(NOT T_RANKS)
+    set(T_RANKS 1)
+  endif()
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  foreach(np IN LISTS T_RANKS)
+    set(test_name ${T_NAME}.np${np})
+    add_test(NAME ${test_name}
+      COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} --oversubscribe ${T_COMMAND})
+    set(processors ${np})
+    if(processors GREATER 2)
+      set(processors 2)
+    endif()
+    set_tests_properties(${test_name} PROPERTIES
+      LABELS "${T_LABELS}" PROCESSORS ${processors} TIMEOUT ${T_TIMEOUT}
+      ENVIRONMENT "${TANKFSI_TEST_ENVIRONMENT}")
+  endforeach()
+endfunction()
+
+function(tankfsi_add_catch_test)
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBRARIES;LABELS;RANKS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE tankfsi_catch_main ${T_LIBRARIES} tankfsi_warnings)
+  set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  tankfsi_add_mpi_test(NAME ${T_NAME} RANKS ${T_RANKS} TIMEOUT ${T_TIMEOUT} LABELS ${T_LABELS}
+    COMMAND $<TARGET_FILE:${T_NAME}> --durations no)
+endfunction()

@@ -1,0 +1,14 @@
+# One warning policy for every target of the project.
+add_library(tankfsi_warnings INTERFACE)
+target_compile_options(tankfsi_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast
+  -Wcast-align -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion
+  -Wimplicit-fallthrough)
+if(TANKFSI_WERROR)
+  target_compile_options(tankfsi_warnings INTERFACE -Werror)
+endif()
+if(TANKFSI_SANITIZE)
+  target_compile_options(tankfsi_warnings INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(tankfsi_warnings INTERFACE -fsanitize=address,undefined)
+endif()

@@ -1,0 +1,46 @@
+#include "common/config/case_schema.hpp"
+
+namespace tankfsi {
+
+// Fluid: incompressible SPH (METHOD.md section 1). In 2D the particles lie in the
+// plane z = 0 with gravity along -y; in 3D gravity acts along -z.
+std::vector<KeySpec> fluid_keys() {
+  return {
+      integer_key("fluid.dimension", "Spatial dimension of the particle model: 2 or 3.").is_required().at_least(2).at_most(3),
+      choice_key("fluid.kernel", {"auto", "quintic_spline", "quartic_spline", "wendland_c2"},
+                 "Smoothing kernel; auto takes the quintic spline in 2D and the quartic spline in 3D.")
+          .default_is("auto"),
+      real_key("fluid.spacing", "Initial particle spacing (L0); also the spacing of the wall kernel tables.")
+          .unit_is("m").is_required().above(0),
+      real_key("fluid.smoothing_length_ratio", "Smoothing length h as a multiple of the particle spacing.")
+          .default_is("1.2").above(0.5).at_most(3),
+      real_key("fluid.density", "Reference density of the liquid.").unit_is("kg/m^3").is_required().above(0),
+      real_key("fluid.viscosity", "Dynamic viscosity of the liquid.").unit_is("Pa s").is_required().at_least(0),
+      real_key("fluid.gravity", "Magnitude of gravity (acts along -y in 2D, -z in 3D).")
+          .unit_is("m/s^2").default_is("9.81").at_least(0),
+      choice_key("fluid.time_step.mode", {"fixed", "adaptive"},
+                 "Fixed time step, or adaptive from the CFL, viscous and body-force limits.")
+          .default_is("adaptive"),
+      real_key("fluid.time_step.value", "The fixed fluid time step.")
+          .unit_is("s").is_required().above(0).only_when("fluid.time_step.mode", {"fixed"}),
+      real_key("fluid.time_step.cfl", "Courant number C of the limit C h / |v|max.")
+          .default_is("0.2").above(0).at_most(1).only_when("fluid.time_step.mode", {"adaptive"}),
+      real_key("fluid.time_step.max", "Largest time step the adaptive controller may take.")
+          .unit_is("s").default_is("0.001").above(0).only_when("fluid.time_step.mode", {"adaptive"}),
+      real_key("fluid.ppe.density_error_weight",
+               "Weight gamma of the density-error part of the pressure Poisson source term.")
+          .default_is("0.01").at_least(0).at_most(1),
+      real_key("fluid.ppe.free_surface_threshold",
+               "Particles with density below this fraction of the reference density are free-surface "
+               "particles (pressure 0).")
+          .default_is("0.97").above(0).below(1),
+      text_key("fluid.ppe.solver_options",
+               "PETSc options for the pressure solver (prefix -ppe_), applied before the command line's.")
+          .default_is("''"),
+      boolean_key("fluid.shifting.enabled", "Fickian particle shifting (Lind et al. 2012).").default_is("true"),
+      real_key("fluid.shifting.coefficient", "Shifting coefficient A of D = A h |v| dt.")
+          .default_is("2").at_least(0).only_when("fluid.shifting.enabled", {"true"}),
+  };
+}
+
+}  // namespace tankfsi

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs every system package tankfsi needs (Debian 12 / bookworm).
+# Idempotent and non-interactive: when everything is present it only checks and exits.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build git pkg-config
+  openmpi-bin libopenmpi-dev
+  libeigen3-dev
+  petsc-dev slepc-dev            # PETSc 3.18 (hypre, MUMPS inside) and SLEPc
+  libhdf5-openmpi-dev hdf5-tools # parallel HDF5 (MPI-IO)
+  libmetis-dev
+  catch2 libyaml-cpp-dev nlohmann-json3-dev
+  python3 python3-numpy python3-matplotlib python3-h5py
+)
+
+if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then
+  echo "setup.sh: this system has no apt/dpkg. tankfsi's set-up script supports Debian 12" >&2
+  echo "and derivatives. Install by hand: ${packages[*]}" >&2
+  exit 1
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "setup.sh: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+as_root=()
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null 2>&1 || { echo "setup.sh: not root and no sudo; run as root" >&2; exit 1; }
+  as_root=(sudo)
+fi
+
+echo "setup.sh: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -q
+"${as_root[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+echo "setup.sh: done"
