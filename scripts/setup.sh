@@ -11,7 +11,7 @@ packages=(
   libhdf5-openmpi-dev hdf5-tools # parallel HDF5 (MPI-IO)
   libmetis-dev
   catch2 libyaml-cpp-dev nlohmann-json3-dev
-  python3 python3-numpy python3-matplotlib python3-h5py
+  python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
 )
 
 if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then

@@ -1,5 +1,7 @@
 #include "common/config/case_config.hpp"
 
+#include "common/io/exact_number.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -42,15 +44,6 @@ std::string describe_node(const YAML::Node& node) {
   return "a map";
 }
 
-std::optional<double> parse_real(std::string text) {
-  if (!text.empty() && text.front() == '+') text.erase(0, 1);
-  double value = 0.0;
-  const auto* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc() || ptr != end) return std::nullopt;
-  return value;
-}
-
 std::optional<long long> parse_integer(std::string text) {
   if (!text.empty() && text.front() == '+') text.erase(0, 1);
   long long value = 0;
@@ -58,12 +51,6 @@ std::optional<long long> parse_integer(std::string text) {
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
   if (text.empty() || ec != std::errc() || ptr != end) return std::nullopt;
   return value;
-}
-
-std::string shortest_text(double value) {
-  char buffer[64];
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, ptr);
 }
 
 bool within_bounds(const KeySpec& spec, double v) {
@@ -120,10 +107,13 @@ class ScopeValidator {
                                      "coupling, excitation, output), got " + describe_node(node)
                                    : "expected a map of keys, got " + describe_node(node));
     }
-    YAML::Node out(YAML::NodeType::Map);
     collect(node, "");
-    validate_given(out);
-    complete_missing(out);
+    validate_given();
+    complete_missing();
+    // Emit in declaration order, so that a resolved case reads like the schema.
+    YAML::Node out(YAML::NodeType::Map);
+    for (const auto& spec : schema_.keys)
+      if (auto it = values_.find(spec.name); it != values_.end()) set_path(out, spec.name, it->second);
     return out;
   }
 
@@ -199,20 +189,28 @@ class ScopeValidator {
     return section.empty() || !model_sections.contains(section) || present_sections_.contains(section);
   }
 
-  void validate_given(YAML::Node& out) {
-    // Keys that decide conditions first, so that a misspelt choice is reported as such.
-    std::stable_partition(given_.begin(), given_.end(), [&](const Given& g) {
+  void validate_given() {
+    // Keys that decide conditions first, so that a misspelt choice is reported as
+    // such. Ordered by index: YAML::Node assignment writes into the tree instead
+    // of rebinding, so the Given entries themselves must never be moved.
+    auto decides = [&](const Given& g) {
       return std::any_of(schema_.keys.begin(), schema_.keys.end(),
                          [&](const KeySpec& k) { return k.when_key == g.spec->name; });
-    });
-    for (const auto& g : given_) {
+    };
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < given_.size(); ++i)
+      if (decides(given_[i])) order.push_back(i);
+    for (std::size_t i = 0; i < given_.size(); ++i)
+      if (!decides(given_[i])) order.push_back(i);
+    for (const std::size_t i : order) {
+      const Given& g = given_[i];
       const KeySpec& spec = *g.spec;
       if (!applies(spec)) {
         throw ConfigError(g.origin, full(spec.name),
                           "only used when " + full(spec.when_key) + " is " + join(spec.when_values, " or ") +
                               " (here it is " + condition_value(spec.when_key) + ")");
       }
-      set_path(out, spec.name, normalise(spec, g.value, g.origin));
+      values_.emplace(spec.name, normalise(spec, g.value, g.origin));
       ctx_.origins[full(spec.name)] = g.origin;
     }
   }
@@ -225,7 +223,7 @@ class ScopeValidator {
     return scope_origin_;
   }
 
-  void complete_missing(YAML::Node& out) {
+  void complete_missing() {
     for (const auto& spec : schema_.keys) {
       if (given(spec.name) || !section_present(spec) || !applies(spec)) continue;
       const Origin origin = enclosing_origin(spec.name);
@@ -236,7 +234,7 @@ class ScopeValidator {
         throw ConfigError(origin, full(spec.name), message);
       }
       if (spec.default_yaml.empty()) continue;
-      set_path(out, spec.name, normalise(spec, YAML::Load(spec.default_yaml), origin));
+      values_.emplace(spec.name, normalise(spec, YAML::Load(spec.default_yaml), origin));
       ctx_.origins[full(spec.name)] = origin;
     }
   }
@@ -246,7 +244,7 @@ class ScopeValidator {
     auto fail = [&](const std::string& message) { return ConfigError(origin, key, message); };
     auto unit_note = [&] { return spec.unit.empty() ? std::string() : " (" + spec.unit + ")"; };
     auto number = [&](const YAML::Node& element, const std::string& element_key) {
-      const auto parsed = value.IsDefined() ? parse_real(scalar_text(element)) : std::nullopt;
+      const auto parsed = element.IsScalar() ? parse_number(element.Scalar()) : std::nullopt;
       if (!element.IsScalar() || !parsed)
         throw ConfigError(origin, element_key, "expected a number" + unit_note() + ", got " + describe_node(element));
       if (!std::isfinite(*parsed))
@@ -258,7 +256,7 @@ class ScopeValidator {
 
     switch (spec.kind) {
       case ValueKind::real:
-        return YAML::Node(shortest_text(number(value, key)));
+        return YAML::Node(exact_text(number(value, key)));
       case ValueKind::integer: {
         const auto parsed = value.IsScalar() ? parse_integer(value.Scalar()) : std::nullopt;
         if (!parsed) throw fail("expected an integer, got " + describe_node(value));
@@ -308,12 +306,15 @@ class ScopeValidator {
         YAML::Node out(YAML::NodeType::Sequence);
         out.SetStyle(YAML::EmitterStyle::Flow);
         for (std::size_t i = 0; i < value.size(); ++i)
-          out.push_back(shortest_text(number(value[i], key + "[" + std::to_string(i) + "]")));
+          out.push_back(exact_text(number(value[i], key + "[" + std::to_string(i) + "]")));
         return out;
       }
       case ValueKind::record_list: {
         YAML::Node out(YAML::NodeType::Sequence);
-        if (value.IsNull()) return out;
+        if (value.IsNull() || value.size() == 0) {
+          out.SetStyle(YAML::EmitterStyle::Flow);
+          return out;
+        }
         if (!value.IsSequence()) throw fail("expected a list of records, got " + describe_node(value));
         const Schema record_schema{spec.fields};
         for (std::size_t i = 0; i < value.size(); ++i) {
@@ -335,12 +336,13 @@ class ScopeValidator {
   Origin scope_origin_;
   bool top_level_;
   std::vector<Given> given_;
+  std::map<std::string, YAML::Node> values_;  // normalised, by key name
   std::map<std::string, Origin> map_origins_;
   std::set<std::string> present_sections_;
 };
 
 void apply_override(YAML::Node& tree, const Override& o, const Schema& schema, Context& ctx) {
-  const Origin origin{"--set " + o.key + "=" + o.value, 0};
+  const Origin origin{o.source.empty() ? "--set " + o.key + "=" + o.value : o.source, 0};
   const KeySpec* spec = schema.find(o.key);
   if (!spec) {
     if (schema.is_map_prefix(o.key))

@@ -22,7 +22,8 @@ namespace tankfsi {
 /// One `--set key=value` from the command line.
 struct Override {
   std::string key;
-  std::string value;  ///< YAML text: 0.02, true, [0, 0, 1]
+  std::string value;   ///< YAML text: 0.02, true, [0, 0, 1]
+  std::string source;  ///< how errors name it; empty means "--set key=value"
 };
 
 /// Read access to one validated scope: the whole case, or one record of a list.

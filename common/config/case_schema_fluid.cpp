@@ -40,6 +40,16 @@ std::vector<KeySpec> fluid_keys() {
       boolean_key("fluid.shifting.enabled", "Fickian particle shifting (Lind et al. 2012).").default_is("true"),
       real_key("fluid.shifting.coefficient", "Shifting coefficient A of D = A h |v| dt.")
           .default_is("2").at_least(0).only_when("fluid.shifting.enabled", {"true"}),
+      record_list_key("fluid.probes", "Points sampled every output.probe_interval into probes/<name>.csv.")
+          .default_is("[]")
+          .with_fields({
+              text_key("name", "Probe name; its file is probes/<name>.csv.").is_required(),
+              choice_key("quantity", {"pressure", "wave_height", "velocity"},
+                         "pressure (Pa) at the point, wave height (m) of the free surface above the point, "
+                         "or velocity (m/s) at the point.")
+                  .is_required(),
+              real_vector_key("position", "The sampled point.").unit_is("m").with_length(3).is_required(),
+          }),
   };
 }
 

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Sets up the machine, builds, and runs a case as a user would.
+# Usage: scripts/run.sh [CASE_DIR]   (default: the default case below)
+# Results go to runs/<case>-<date-time>/ (printed at the end).
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+default_case=cases/tank3d_fixed_roof_coarse
+case_dir=${1:-$default_case}
+bash "$repo_root/scripts/setup.sh"
+bash "$repo_root/scripts/build.sh" release
+cd "$repo_root"
+case_file="$case_dir/case.yaml"
+[[ -f "$case_file" ]] || { echo "run.sh: no case file $case_file" >&2; exit 2; }
+run_dir="runs/$(basename "$case_dir")-$(date +%Y%m%d-%H%M%S)"
+
+missing=()
+for program in sph_solver fem_solver; do
+  [[ -x build/bin/$program ]] || missing+=("$program")
+done
+if [[ ${#missing[@]} -gt 0 ]]; then
+  # The analysis programs are not part of this build yet: check the case and
+  # prepare its run folder with the ground motion it would apply.
+  echo "run.sh: not built yet: ${missing[*]} -- checking the case and its ground motion only"
+  build/bin/tankfsi_case "$case_file" --prepare --output "$run_dir"
+  /usr/bin/python3 scripts/post/plot_probes.py "$run_dir"
+  echo "run.sh: results in $run_dir"
+  exit 0
+fi
