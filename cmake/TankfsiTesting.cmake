@@ -8,11 +8,15 @@
 # tankfsi_add_mpi_test(NAME n RANKS 1 2 COMMAND exe args... LABELS l)
 #   registers an arbitrary command under mpiexec the same way.
 
+# odls_base_sigkill_timeout=0: mpirun otherwise waits 2 s before tearing down a
+# job whose process exited non-zero, which the bad-input tests do by design.
+# (Not set for real runs: a job killed by the scheduler needs that grace time.)
 set(TANKFSI_TEST_ENVIRONMENT
   OMPI_ALLOW_RUN_AS_ROOT=1
   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   OMPI_MCA_rmaps_base_oversubscribe=1
   OMPI_MCA_btl_vader_single_copy_mechanism=none
+  OMPI_MCA_odls_base_sigkill_timeout=0
   TANKFSI_PYTHON=${TANKFSI_PYTHON})
 
 function(tankfsi_add_mpi_test)

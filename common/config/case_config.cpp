@@ -28,7 +28,8 @@ void set_path(YAML::Node node, const std::string& name, const YAML::Node& value)
 }
 
 YAML::Node get_path(const YAML::Node& node, const std::string& name) {
-  if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+  // A missing key yields an invalid node, on which IsMap() would throw.
+  if (!node.IsDefined() || !node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
   const auto dot = name.find('.');
   const YAML::Node& const_node = node;
   if (dot == std::string::npos) return const_node[name];

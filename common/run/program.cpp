@@ -22,10 +22,13 @@ constexpr int exit_failure = 1;
   std::exit(status);
 }
 
-int run_body(const CommandLine& cli, const CaseConfig& config, const ProgramInfo& program, const ProgramBody& body,
+int run_work(const CommandLine& cli, const CaseConfig& config, const ProgramInfo& program, const ProgramSetup& setup,
              bool with_folder, MPI_Comm comm) {
   const CommInfo info = comm_info(comm);
   Logger log(comm, program.name, parse_log_level(config.text("output.log_level")));
+  // Set-up errors are input errors met identically on every rank (the same files
+  // read the same way): they return normally, nothing written.
+  const ProgramWork work = setup(ProgramInputs{cli, config, log, comm});
   std::optional<RunFolder> folder;
   if (with_folder) {
     try {
@@ -52,7 +55,7 @@ int run_body(const CommandLine& cli, const CaseConfig& config, const ProgramInfo
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json results;
   try {
-    results = body(context);
+    results = work(context);
   } catch (const ConfigError& e) {
     log.error(e.what());
     if (info.size > 1) abort_job(exit_status_bad_input);
@@ -68,14 +71,18 @@ int run_body(const CommandLine& cli, const CaseConfig& config, const ProgramInfo
     part["programs"][program.name] = {{"status", "finished"}, {"wall_time_s", wall}, {"stages", timers.to_json()}};
     folder->merge_json("summary.json", part);
   }
-  if (!timers.to_json().empty()) log.info("stage timings (rank 0):\n", timers.table());
-  log.info(program.name, " finished in ", wall, " s");
+  // A run without a folder only answers a question (check a case): its output
+  // is the answer, with no log lines mixed in.
+  if (folder) {
+    if (!timers.to_json().empty()) log.info("stage timings (rank 0):\n", timers.table());
+    log.info(program.name, " finished in ", wall, " s");
+  }
   return exit_success;
 }
 
 }  // namespace
 
-int run_program(int argc, char** argv, const ProgramInfo& program, const ProgramBody& body,
+int run_program(int argc, char** argv, const ProgramInfo& program, const ProgramSetup& setup,
                 const RunFolderPolicy& writes_run_folder) {
   std::optional<CommandLine> cli;
   std::string command_line_error;
@@ -107,10 +114,14 @@ int run_program(int argc, char** argv, const ProgramInfo& program, const Program
     // Every rank reads and validates: the same file gives the same verdict everywhere.
     const CaseConfig config = CaseConfig::load(cli->case_file, overrides, case_schema());
     const bool with_folder = !writes_run_folder || writes_run_folder(*cli);
-    return run_body(*cli, config, program, body, with_folder, session.world());
+    return run_work(*cli, config, program, setup, with_folder, session.world());
   } catch (const ConfigError& e) {
     if (printer) std::cerr << program.name << ": error: " << e.what() << "\n";
     return exit_status_bad_input;
+  } catch (const std::exception& e) {
+    std::cerr << program.name << ": error (rank " << session.rank() << "): " << e.what() << "\n";
+    if (session.size() > 1) abort_job(exit_failure);
+    return exit_failure;
   }
 }
 

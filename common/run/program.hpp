@@ -3,11 +3,12 @@
 //
 //   1. parse the command line; start MPI and PETSc with the PETSc options only
 //   2. --help / --version
-//   3. read and validate the case (bad input: message naming file, line and key,
-//      exit status 2, nothing written)
+//   3. read and validate the case, then run the program's set-up, which reads
+//      and checks every other input (bad input: a message naming file, line and
+//      key, exit status 2, nothing written)
 //   4. claim the run folder; write case.resolved.yaml, provenance.json, run.log
-//   5. run the program's body, timing its stages
-//   6. merge the body's results and the timings into summary.json
+//   5. run the program's work, timing its stages
+//   6. merge the work's results and the timings into summary.json
 // Exit status: 0 success, 1 run-time failure, 2 bad input.
 #include <mpi.h>
 
@@ -22,6 +23,15 @@
 
 namespace tankfsi {
 
+/// What a program's set-up sees: the validated case, before any file is written.
+struct ProgramInputs {
+  const CommandLine& command_line;
+  const CaseConfig& config;
+  Logger& log;
+  MPI_Comm comm;
+};
+
+/// What a program's work sees: the inputs, the run folder and the stage timers.
 struct ProgramContext {
   const CommandLine& command_line;
   const CaseConfig& config;
@@ -31,12 +41,17 @@ struct ProgramContext {
   MPI_Comm comm;
 };
 
-/// The program's work; returns its results for summary.json (merged at top level).
-using ProgramBody = std::function<nlohmann::json(ProgramContext&)>;
+/// The program's work once its run folder exists; returns its results for
+/// summary.json (merged at the top level).
+using ProgramWork = std::function<nlohmann::json(ProgramContext&)>;
+/// Reads and checks every input the work needs (meshes, records, ground
+/// motions), raising bad input as ConfigError before anything is written, and
+/// returns the work.
+using ProgramSetup = std::function<ProgramWork(const ProgramInputs&)>;
 /// Whether this invocation writes a run folder (default: always).
 using RunFolderPolicy = std::function<bool(const CommandLine&)>;
 
-int run_program(int argc, char** argv, const ProgramInfo& program, const ProgramBody& body,
+int run_program(int argc, char** argv, const ProgramInfo& program, const ProgramSetup& setup,
                 const RunFolderPolicy& writes_run_folder = nullptr);
 
 }  // namespace tankfsi

@@ -21,12 +21,12 @@
 
 namespace {
 
-// 1. Sample a_g(t) over the run (end_time, else the motion's own duration).
-nlohmann::json write_ground_motion_probe(tankfsi::ProgramContext& context) {
+// Samples a_g(t) over the run (end_time, else the motion's own duration) into
+// probes/ground_acceleration.csv and returns its peaks for summary.json.
+nlohmann::json write_ground_motion_probe(tankfsi::ProgramContext& context, const tankfsi::GroundMotion& motion) {
   const auto& config = context.config;
-  const auto motion = tankfsi::make_ground_motion(config);
   const double interval = config.real("output.probe_interval");
-  const double end = config.has("end_time") ? config.real("end_time") : motion->duration();
+  const double end = config.has("end_time") ? config.real("end_time") : motion.duration();
   const auto steps = static_cast<long>(std::floor(end / interval + 1e-9));
 
   tankfsi::ProbeFile probe(context.folder->probes() / "ground_acceleration.csv",
@@ -35,7 +35,7 @@ nlohmann::json write_ground_motion_probe(tankfsi::ProgramContext& context) {
   Eigen::Vector3d peak_time = Eigen::Vector3d::Zero();
   for (long k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * interval;
-    const Eigen::Vector3d a = motion->acceleration(t);
+    const Eigen::Vector3d a = motion.acceleration(t);
     probe.append(t, {a.data(), 3});
     for (int c = 0; c < 3; ++c)
       if (std::abs(a[c]) > peak[c]) {
@@ -64,13 +64,18 @@ int main(int argc, char** argv) {
       {"--prepare         write the run folder with the resolved case and probes/ground_acceleration.csv"}};
   return tankfsi::run_program(
       argc, argv, program,
-      [](tankfsi::ProgramContext& context) -> nlohmann::json {
-        if (!context.folder) {
-          if (context.log.rank() == 0) std::cout << context.config.resolved_yaml();
-          return {};
-        }
-        auto scope = context.timers.time("ground_motion");
-        return write_ground_motion_probe(context);
+      [](const tankfsi::ProgramInputs& inputs) -> tankfsi::ProgramWork {
+        // Reading the records here checks them (files, windows, rates) before
+        // anything is written, also when only checking the case.
+        std::shared_ptr<const tankfsi::GroundMotion> motion = tankfsi::make_ground_motion(inputs.config);
+        return [motion](tankfsi::ProgramContext& context) -> nlohmann::json {
+          if (!context.folder) {
+            if (context.log.rank() == 0) std::cout << context.config.resolved_yaml();
+            return {};
+          }
+          auto scope = context.timers.time("ground_motion");
+          return write_ground_motion_probe(context, *motion);
+        };
       },
       [](const tankfsi::CommandLine& cli) { return cli.has_flag("--prepare"); });
 }

@@ -8,7 +8,7 @@ summary.json and probes/ground_acceleration.csv; the resolved case is itself a
 valid case that resolves to the same text (a fixed point); provenance names the
 rank count and the command line; a second run into the same folder is refused
 with exit status 2 and leaves every file as it was; --help names every key of
-the resolved case.
+the resolved case; -log_view reaches PETSc and shows the program's stages.
 """
 import argparse
 import hashlib
@@ -64,8 +64,10 @@ def main():
 
     with tempfile.TemporaryDirectory() as scratch:
         folder = pathlib.Path(scratch) / "run"
-        first = run(command + [args.case, "--prepare", "--output", str(folder)])
+        first = run(command + [args.case, "--prepare", "--output", str(folder), "-log_view"])
         check(first.returncode == 0, f"first run exits 0 (got {first.returncode}: {first.stderr.strip()})")
+        stages = first.stdout.split("Summary of Stages:")[-1].split("\n\n")[0]
+        check("ground_motion" in stages, "-log_view lists the program's stage ground_motion")
         for name in ["case.resolved.yaml", "provenance.json", "run.log", "summary.json",
                      "probes/ground_acceleration.csv"]:
             check((folder / name).is_file(), f"{name} written")

@@ -55,6 +55,8 @@ TEST_CASE("values read back exactly and defaults fill the rest", "[config]") {
   CHECK_FALSE(config.has_section("coupling"));  // model sections are not invented
   CHECK(config.has_section("output"));          // settings sections always exist
   CHECK(config.text("excitation.type") == "none");
+  CHECK_FALSE(config.has("excitation.knet.x"));  // a key below an absent group
+  CHECK_FALSE(config.has("coupling.implicit.max_iterations"));
   CHECK(config.records("fluid.probes").empty());
 }
 
