@@ -5,8 +5,9 @@
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 preset=${1:-release}
-werror=OFF
-[[ "${CI:-}" == "true" ]] && werror=ON
+options=()
+# Only CI sets the option: flipping it on every build would rebuild everything.
+[[ "${CI:-}" == "true" ]] && options+=(-DTANKFSI_WERROR=ON)
 cd "$repo_root"
-cmake --preset "$preset" -DTANKFSI_WERROR=$werror >/dev/null
+cmake --preset "$preset" "${options[@]}" >/dev/null
 cmake --build --preset "$preset" -j "$jobs"

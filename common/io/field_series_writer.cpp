@@ -9,7 +9,7 @@
 #include <system_error>
 #include <utility>
 
-#include "common/io/collective_check.hpp"
+#include "common/parallel/collective.hpp"
 #include "common/io/exact_number.hpp"
 #include "common/io/xdmf_grid_json.hpp"
 
@@ -102,15 +102,7 @@ std::string cells_problem(const SurfaceCells& cells, std::int64_t total_vertices
 }
 
 /// True on the ranks whose `text` differs from rank 0's.
-bool differs_from_rank0(MPI_Comm comm, const std::string& text) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  int length = static_cast<int>(text.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  std::string rank0_text = rank == 0 ? text : std::string(static_cast<std::size_t>(length), '\0');
-  MPI_Bcast(rank0_text.data(), length, MPI_CHAR, 0, comm);
-  return rank0_text != text;
-}
+bool differs_from_rank0(MPI_Comm comm, const std::string& text) { return broadcast_text(comm, text) != text; }
 
 std::filesystem::path checked_h5_path(MPI_Comm comm, const std::filesystem::path& folder, const std::string& name) {
   std::string problem = name_problem("series", name);

@@ -7,7 +7,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "common/io/collective_check.hpp"
+#include "common/parallel/collective.hpp"
 
 namespace tankfsi {
 

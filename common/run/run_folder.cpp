@@ -10,6 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/parallel/collective.hpp"
+
 namespace tankfsi {
 
 namespace fs = std::filesystem;
@@ -54,11 +56,7 @@ void deep_merge(nlohmann::json& into, const nlohmann::json& part) {
 RunFolder RunFolder::claim(MPI_Comm comm, const fs::path& folder, const std::string& program) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  std::string refusal = rank == 0 ? try_claim(folder, program) : "";
-  int length = static_cast<int>(refusal.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  refusal.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(refusal.data(), length, MPI_CHAR, 0, comm);
+  const std::string refusal = broadcast_text(comm, rank == 0 ? try_claim(folder, program) : "");
   if (!refusal.empty()) throw std::runtime_error(refusal);
   return RunFolder(folder, program);
 }

@@ -1,13 +1,13 @@
 // CaseConfig: values, defaults, overrides, paths and error locations, checked
 // against the text of small case files written by the tests.
 #include <catch2/catch.hpp>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "common/config/case_config.hpp"
 #include "common/config/case_schema.hpp"
+#include "support/scratch_folder.hpp"
 
 using namespace tankfsi;
 namespace fs = std::filesystem;
@@ -16,16 +16,12 @@ namespace {
 
 // A case file in a fresh folder of its own; removed with the object.
 struct ScratchCase {
-  fs::path folder;
+  testing::ScratchFolder scratch;
+  fs::path folder = scratch.path();
   fs::path file;
-  explicit ScratchCase(const std::string& text, const std::string& name = "case.yaml") {
-    folder = fs::temp_directory_path() / ("tankfsi_case_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(folder);
-    file = folder / name;
+  explicit ScratchCase(const std::string& text, const std::string& name = "case.yaml") : file(folder / name) {
     std::ofstream(file) << text;
   }
-  ~ScratchCase() { fs::remove_all(folder); }
-  static inline int counter = 0;
 };
 
 const char* base_fluid = R"(fluid:

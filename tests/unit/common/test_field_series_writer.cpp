@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_folder.hpp"
 #include "common/io/field_series_writer.hpp"
 #include "common/io/hdf5_file.hpp"
 
@@ -40,40 +41,6 @@ int world_size() {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   return size;
 }
-
-std::string broadcast_from_rank0(std::string text) {
-  int length = static_cast<int>(text.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  text.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(text.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
-  return text;
-}
-
-/// A folder with the same path on every rank: rank 0 makes it under a unique
-/// name and tells the others. Removed, with its contents, when all ranks are done.
-class SharedTempFolder {
- public:
-  SharedTempFolder() {
-    std::string made;
-    if (world_rank() == 0) {
-      auto pattern = (std::filesystem::temp_directory_path() / "tankfsi_series_XXXXXX").string();
-      if (mkdtemp(pattern.data()) != nullptr) made = pattern;
-    }
-    path_ = broadcast_from_rank0(made);
-    if (path_.empty()) throw std::runtime_error("rank 0 could not make a temporary folder");
-  }
-  ~SharedTempFolder() {
-    MPI_Barrier(MPI_COMM_WORLD);
-    std::error_code ignored;
-    if (world_rank() == 0) std::filesystem::remove_all(path_, ignored);
-  }
-  SharedTempFolder(const SharedTempFolder&) = delete;
-  SharedTempFolder& operator=(const SharedTempFolder&) = delete;
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // ---------------------------------------------------------------- what is written
 
@@ -420,7 +387,7 @@ std::string xdmf_text(const std::filesystem::path& path) {
 TEST_CASE("particles and a deforming mesh round-trip through HDF5 and XDMF", "[hdf5]") {
   const int rank = world_rank();
   const int size = world_size();
-  const SharedTempFolder folder;
+  const tankfsi::testing::ScratchFolder folder(tankfsi::testing::ScratchFolder::Scope::shared);
   {
     FieldSeriesWriter fluid(MPI_COMM_WORLD, folder.path(), "fluid");
     FieldSeriesWriter wall(MPI_COMM_WORLD, folder.path(), "tank_wall");
@@ -460,7 +427,7 @@ TEST_CASE("particles and a deforming mesh round-trip through HDF5 and XDMF", "[h
 
 TEST_CASE("append continues a series, truncate starts it anew", "[hdf5]") {
   const int size = world_size();
-  const SharedTempFolder folder;
+  const tankfsi::testing::ScratchFolder folder(tankfsi::testing::ScratchFolder::Scope::shared);
   {
     FieldSeriesWriter first_run(MPI_COMM_WORLD, folder.path(), "fluid", FileMode::append);  // no file yet: made
     CHECK(first_run.snapshot_count() == 0);
@@ -497,7 +464,7 @@ TEST_CASE("append continues a series, truncate starts it anew", "[hdf5]") {
 TEST_CASE("bad snapshots throw on every rank and leave the series intact", "[hdf5]") {
   const int rank = world_rank();
   const int size = world_size();
-  const SharedTempFolder folder;
+  const tankfsi::testing::ScratchFolder folder(tankfsi::testing::ScratchFolder::Scope::shared);
   const std::string last_rank = "(on rank " + std::to_string(size - 1) + ")";
 
   REQUIRE_THROWS_AS(FieldSeriesWriter(MPI_COMM_WORLD, folder.path() / "missing", "fluid"), std::invalid_argument);
@@ -551,7 +518,7 @@ TEST_CASE("bad snapshots throw on every rank and leave the series intact", "[hdf
 TEST_CASE("Hdf5File writes rank blocks, empty blocks and attributes collectively", "[hdf5]") {
   const int rank = world_rank();
   const int size = world_size();
-  const SharedTempFolder folder;
+  const tankfsi::testing::ScratchFolder folder(tankfsi::testing::ScratchFolder::Scope::shared);
   const auto path = folder.path() / "blocks.h5";
 
   {

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_folder.hpp"
 #include "common/config/case_config.hpp"
 #include "common/config/case_schema.hpp"
 #include "common/excitation/csv_motion.hpp"
@@ -25,6 +26,7 @@
 #include "common/excitation/synthetic_motion.hpp"
 
 using namespace tankfsi;
+using tankfsi::testing::ScratchFolder;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
@@ -33,27 +35,6 @@ namespace {
 constexpr double pi = std::numbers::pi;
 
 // A folder of its own for one test on one rank, removed afterwards.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    static int serial = 0;
-    int rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    path_ = fs::temp_directory_path() / ("tankfsi_ground_motion_r" + std::to_string(rank) + "_p" +
-                                         std::to_string(getpid()) + "_" + std::to_string(serial++));
-    fs::create_directories(path_);
-  }
-  ~ScratchFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  [[nodiscard]] fs::path file(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
 
 void write_text(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
 

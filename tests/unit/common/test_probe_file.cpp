@@ -1,23 +1,17 @@
 // ProbeFile: exact values, header with units, flushing by simulated time.
 #include <catch2/catch.hpp>
-#include <mpi.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "common/io/probe_file.hpp"
+#include "support/scratch_folder.hpp"
 
 using namespace tankfsi;
 namespace fs = std::filesystem;
 
 namespace {
-fs::path scratch_file(const std::string& stem) {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return fs::temp_directory_path() / (stem + "_" + std::to_string(::getpid()) + "_" + std::to_string(rank) + ".csv");
-}
 std::vector<std::string> lines_of(const fs::path& p) {
   std::ifstream in(p);
   std::vector<std::string> lines;
@@ -27,7 +21,8 @@ std::vector<std::string> lines_of(const fs::path& p) {
 }  // namespace
 
 TEST_CASE("rows read back to the same doubles", "[probe]") {
-  const auto path = scratch_file("probe_exact");
+  const testing::ScratchFolder folder;
+  const auto path = folder.file("probe.csv");
   {
     ProbeFile probe(path, {"wave_height_m", "pressure_Pa"}, 0.1);
     const double a[] = {0.1 + 0.2, 1.0 / 3.0};
@@ -46,11 +41,11 @@ TEST_CASE("rows read back to the same doubles", "[probe]") {
   CHECK(std::stod(h) == 0.1 + 0.2);
   CHECK(std::stod(p) == 1.0 / 3.0);
   CHECK(lines[2] == "0.005,-1e-300,6713.25");
-  fs::remove(path);
 }
 
 TEST_CASE("rows reach the disk once simulated time passes the flush interval", "[probe]") {
-  const auto path = scratch_file("probe_flush");
+  const testing::ScratchFolder folder;
+  const auto path = folder.file("probe.csv");
   ProbeFile probe(path, {"x_m"}, 0.1);
   const double v[] = {1.0};
   probe.append(0.0, v);  // first row: flushed (nothing flushed before)
@@ -58,11 +53,11 @@ TEST_CASE("rows reach the disk once simulated time passes the flush interval", "
   for (int k = 1; k <= 10; ++k) probe.append(0.01 * k, v);
   // The row at t = 0.1 completes an interval since the flush at t = 0: all rows are on disk.
   CHECK(lines_of(path).size() == 12);
-  fs::remove(path);
 }
 
 TEST_CASE("bad columns, counts and times are refused", "[probe]") {
-  const auto path = scratch_file("probe_bad");
+  const testing::ScratchFolder folder;
+  const auto path = folder.file("probe.csv");
   CHECK_THROWS(ProbeFile(path, {"a,b"}, 1.0));
   CHECK_THROWS(ProbeFile(path, {"time_s"}, 1.0));
   ProbeFile probe(path, {"x_m", "y_m"}, 1.0);
@@ -71,5 +66,4 @@ TEST_CASE("bad columns, counts and times are refused", "[probe]") {
   CHECK_THROWS(probe.append(0.0, one));
   probe.append(1.0, two);
   CHECK_THROWS(probe.append(0.5, two));
-  fs::remove(path);
 }

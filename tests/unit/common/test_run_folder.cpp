@@ -11,27 +11,20 @@
 #include "common/log/logger.hpp"
 #include "common/log/stage_timers.hpp"
 #include "common/run/run_folder.hpp"
+#include "support/scratch_folder.hpp"
 
 using namespace tankfsi;
 namespace fs = std::filesystem;
 
 namespace {
 
-// One scratch folder name for all ranks: rank 0 chooses, everyone agrees.
-fs::path shared_scratch(const std::string& stem) {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  long pid = rank == 0 ? static_cast<long>(::getpid()) : 0;
-  MPI_Bcast(&pid, 1, MPI_LONG, 0, MPI_COMM_WORLD);
-  return fs::temp_directory_path() / (stem + "_" + std::to_string(pid));
-}
+using testing::ScratchFolder;
+constexpr auto shared = ScratchFolder::Scope::shared;
 
-void cleanup(const fs::path& folder) {
-  MPI_Barrier(MPI_COMM_WORLD);
+int world_rank() {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (rank == 0) fs::remove_all(folder);
-  MPI_Barrier(MPI_COMM_WORLD);
+  return rank;
 }
 
 std::string read(const fs::path& p) {
@@ -42,7 +35,8 @@ std::string read(const fs::path& p) {
 }  // namespace
 
 TEST_CASE("a folder is claimed once per program and shared by partners", "[run_folder]") {
-  const auto folder = shared_scratch("tankfsi_claim");
+  const ScratchFolder scratch(shared);
+  const auto folder = scratch.file("run");
   const auto fluid = RunFolder::claim(MPI_COMM_WORLD, folder, "sph_solver");
   CHECK(fs::is_directory(fluid.probes()));
   const auto structure = RunFolder::claim(MPI_COMM_WORLD, folder, "fem_solver");  // the partner joins
@@ -50,14 +44,12 @@ TEST_CASE("a folder is claimed once per program and shared by partners", "[run_f
   CHECK_THROWS_WITH(RunFolder::claim(MPI_COMM_WORLD, folder, "sph_solver"),
                     "run folder '" + folder.string() +
                         "' already holds a run of sph_solver; choose another folder (--output DIR) or remove it");
-  cleanup(folder);
 }
 
 TEST_CASE("a non-empty folder that is not a run folder is refused", "[run_folder]") {
-  const auto folder = shared_scratch("tankfsi_foreign");
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (rank == 0) {
+  const ScratchFolder scratch(shared);
+  const auto folder = scratch.file("run");
+  if (world_rank() == 0) {
     fs::create_directories(folder);
     std::ofstream(folder / "thesis.tex") << "precious";
   }
@@ -65,15 +57,13 @@ TEST_CASE("a non-empty folder that is not a run folder is refused", "[run_folder
   CHECK_THROWS_WITH(RunFolder::claim(MPI_COMM_WORLD, folder, "sph_solver"),
                     Catch::Contains("is not empty and is not a tankfsi run folder"));
   CHECK(read(folder / "thesis.tex") == "precious");
-  cleanup(folder);
 }
 
 TEST_CASE("JSON documents merge the partners' parts key by key", "[run_folder]") {
-  const auto folder = shared_scratch("tankfsi_merge");
+  const ScratchFolder scratch(shared);
+  const auto folder = scratch.file("run");
   const auto run = RunFolder::claim(MPI_COMM_WORLD, folder, "sph_solver");
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (rank == 0) {
+  if (world_rank() == 0) {
     run.merge_json("summary.json", {{"programs", {{"sph_solver", {{"steps", 10}}}}}, {"sloshing_period_s", 5.9}});
     run.merge_json("summary.json", {{"programs", {{"fem_solver", {{"steps", 100}}}}}, {"bulging_period_s", 0.2}});
     const auto merged = nlohmann::json::parse(read(folder / "summary.json"));
@@ -85,17 +75,14 @@ TEST_CASE("JSON documents merge the partners' parts key by key", "[run_folder]")
     for (const auto& entry : fs::directory_iterator(folder))
       CHECK(entry.path().filename().string().find(".tmp") == std::string::npos);
   }
-  cleanup(folder);
 }
 
 TEST_CASE("the log file gets one line per info message and one error line per rank", "[log]") {
-  const auto folder = shared_scratch("tankfsi_log");
-  int rank = 0;
+  const ScratchFolder scratch(shared);
+  const auto& folder = scratch.path();
+  const int rank = world_rank();
   int size = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (rank == 0) fs::create_directories(folder);
-  MPI_Barrier(MPI_COMM_WORLD);
   {
     Logger log(MPI_COMM_WORLD, "test_program", LogLevel::info);
     log.attach_file(folder / "run.log");
@@ -116,7 +103,6 @@ TEST_CASE("the log file gets one line per info message and one error line per ra
     CHECK(count("diverged on this rank") == static_cast<std::size_t>(size));
     CHECK(count("[test_program") == static_cast<std::size_t>(size) + 1);
   }
-  cleanup(folder);
 }
 
 TEST_CASE("stage timers accumulate time and calls, nested stages included", "[timers]") {

@@ -1,9 +1,17 @@
-#include "common/io/collective_check.hpp"
+#include "common/parallel/collective.hpp"
 
 #include <climits>
 #include <stdexcept>
 
 namespace tankfsi {
+
+std::string broadcast_text(MPI_Comm comm, std::string text, int root) {
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, root, comm);
+  text.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(text.data(), length, MPI_CHAR, root, comm);
+  return text;
+}
 
 std::string first_problem_on_any_rank(MPI_Comm comm, const std::string& local_problem) {
   int rank = 0;
@@ -15,11 +23,7 @@ std::string first_problem_on_any_rank(MPI_Comm comm, const std::string& local_pr
 
   // Only the reporting rank knows its message: send it to everyone, so that
   // every rank's log says what went wrong, not just that something did.
-  std::string message = rank == reporting_rank ? local_problem : std::string();
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, reporting_rank, comm);
-  message.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(message.data(), length, MPI_CHAR, reporting_rank, comm);
+  const std::string message = broadcast_text(comm, rank == reporting_rank ? local_problem : std::string(), reporting_rank);
   return message + " (on rank " + std::to_string(reporting_rank) + ")";
 }
 
