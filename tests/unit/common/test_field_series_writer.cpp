@@ -176,14 +176,19 @@ std::vector<T> gathered(const std::vector<Block>& blocks, Member member) {
   return all;
 }
 
+ExpectedStep expected_header(int step, double time, const std::string& topology) {
+  ExpectedStep expected;
+  expected.group = step_group(step);
+  expected.time = time;
+  expected.topology = topology;
+  return expected;
+}
+
 ExpectedStep expected_particle_step(int step, int size, double time) {
   std::vector<ParticleBlock> blocks;
   for (int rank = 0; rank < size; ++rank) blocks.push_back(particle_block(rank, size, step));
-  const auto group = step_group(step);
-  ExpectedStep expected;
-  expected.group = group;
-  expected.time = time;
-  expected.topology = "Polyvertex";
+  ExpectedStep expected = expected_header(step, time, "Polyvertex");
+  const auto& group = expected.group;
   expected.geometry = doubles_dataset(group + "/position", gathered<double>(blocks, &ParticleBlock::positions), 3);
   expected.elements = static_cast<std::int64_t>(expected.geometry.dims[0]);
   expected.attributes.push_back(
@@ -204,11 +209,8 @@ ExpectedStep expected_particle_step(int step, int size, double time) {
 ExpectedStep expected_mesh_step(int step, int size, double time) {
   std::vector<MeshBlock> blocks;
   for (int rank = 0; rank < size; ++rank) blocks.push_back(mesh_block(rank, size, step));
-  const auto group = step_group(step);
-  ExpectedStep expected;
-  expected.group = group;
-  expected.time = time;
-  expected.topology = "Mixed";
+  ExpectedStep expected = expected_header(step, time, "Mixed");
+  const auto& group = expected.group;
   expected.geometry = doubles_dataset(group + "/position", gathered<double>(blocks, &MeshBlock::positions), 3);
   // XDMF Mixed connectivity, rank after rank: 4 a b c per triangle, then 5 a b c d per quad.
   std::vector<std::int64_t> connectivity;
