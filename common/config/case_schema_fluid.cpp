@@ -40,13 +40,51 @@ std::vector<KeySpec> fluid_keys() {
       boolean_key("fluid.shifting.enabled", "Fickian particle shifting (Lind et al. 2012).").default_is("true"),
       real_key("fluid.shifting.coefficient", "Shifting coefficient A of D = A h |v| dt.")
           .default_is("2").at_least(0).only_when("fluid.shifting.enabled", {"true"}),
+      integer_key("fluid.rebalance_interval",
+                  "Steps between re-partitions of the particles over the ranks (and re-sorts in cell order).")
+          .default_is("20").at_least(1),
+      choice_key("fluid.geometry.type", {"rectangular_tank", "overflow_tank", "cylindrical_tank", "stl", "gmsh"},
+                 "Wall geometry (required by sph_solver): a generated tank, or a surface mesh file whose "
+                 "triangle normals point into the liquid."),
+      real_key("fluid.geometry.width", "Inner width of a rectangular (2D) tank, along x.")
+          .unit_is("m").is_required().above(0).only_when("fluid.geometry.type", {"rectangular_tank", "overflow_tank"}),
+      real_key("fluid.geometry.wall_height", "Height of the tank's side walls above the floor.")
+          .unit_is("m").is_required().above(0)
+          .only_when("fluid.geometry.type", {"rectangular_tank", "overflow_tank", "cylindrical_tank"}),
+      real_key("fluid.geometry.catch_margin",
+               "Overflow tank: gap between the inner tank's walls and the outer catch tank's walls.")
+          .unit_is("m").default_is("0.5").above(0).only_when("fluid.geometry.type", {"overflow_tank"}),
+      real_key("fluid.geometry.radius", "Inner radius of an upright cylindrical tank.")
+          .unit_is("m").is_required().above(0).only_when("fluid.geometry.type", {"cylindrical_tank"}),
+      real_key("fluid.geometry.dome_radius",
+               "Radius of the spherical dome roof of a cylindrical tank; 0 for an open top.")
+          .unit_is("m").default_is("0").at_least(0).only_when("fluid.geometry.type", {"cylindrical_tank"}),
+      real_key("fluid.geometry.element_size", "Target edge length of the generated wall triangles; 0 for 2 L0.")
+          .unit_is("m").default_is("0").at_least(0)
+          .only_when("fluid.geometry.type", {"rectangular_tank", "overflow_tank", "cylindrical_tank"}),
+      input_path_key("fluid.geometry.file", "STL (ASCII or binary) or Gmsh .msh v4.1 ASCII surface mesh.")
+          .is_required().only_when("fluid.geometry.type", {"stl", "gmsh"}),
+      real_key("fluid.fill.level",
+               "Height of the still liquid surface (y in 2D, z in 3D) up to which the tank is filled.")
+          .unit_is("m").above(0),
+      real_vector_key("fluid.fill.region",
+                      "Box [x0, y0, z0, x1, y1, z1] the initial liquid is confined to (a dam-break column); "
+                      "omitted for the whole tank.")
+          .unit_is("m").with_length(6),
+      boolean_key("fluid.fill.hydrostatic", "Start from the hydrostatic pressure rho g (level - height).")
+          .default_is("true"),
+      real_vector_key("fluid.domain",
+                      "Box [x0, y0, z0, x1, y1, z1] outside which particles are removed (overflow); "
+                      "omitted for the walls' bounding box grown by one kernel support.")
+          .unit_is("m").with_length(6),
       record_list_key("fluid.probes", "Points sampled every output.probe_interval into probes/<name>.csv.")
           .default_is("[]")
           .with_fields({
               text_key("name", "Probe name; its file is probes/<name>.csv.").is_required(),
-              choice_key("quantity", {"pressure", "wave_height", "velocity"},
+              choice_key("quantity", {"pressure", "wave_height", "velocity", "front"},
                          "pressure (Pa) at the point, wave height (m) of the free surface above the point, "
-                         "or velocity (m/s) at the point.")
+                         "velocity (m/s) at the point, or the surge front: the largest x - x_point of the "
+                         "particles within 2 L0 above the point.")
                   .is_required(),
               real_vector_key("position", "The sampled point.").unit_is("m").with_length(3).is_required(),
           }),

@@ -1,0 +1,166 @@
+#include "sph_solver/app/fluid_case.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "common/config/config_error.hpp"
+#include "sph_solver/particles/filling.hpp"
+#include "sph_solver/walls/gmsh_reader.hpp"
+#include "sph_solver/walls/stl_reader.hpp"
+#include "sph_solver/walls/tank_meshes.hpp"
+
+namespace tankfsi::sph {
+namespace {
+
+/// Depth of the extruded walls of a 2D section (the paper's tank is 2 cm deep);
+/// it only has to exceed the kernel support, since front and back are open.
+double section_depth(const FluidModel& model) { return 4.0 * model.smoothing_length * 3.0; }
+
+Eigen::AlignedBox3d box_from(const ConfigView& config, const std::string& key) {
+  const auto v = config.real_vector(key);
+  Eigen::AlignedBox3d box(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
+  if (!(box.min().array() <= box.max().array()).all())
+    throw config.error_at(key, "the first corner must not exceed the second in any coordinate");
+  return box;
+}
+
+FluidModel read_model(const CaseConfig& config) {
+  FluidModel m;
+  m.dimension = static_cast<int>(config.integer("fluid.dimension"));
+  try {
+    m.kernel = parse_kernel_type(config.text("fluid.kernel"), m.dimension);
+  } catch (const std::invalid_argument& e) {
+    throw config.error_at("fluid.kernel", e.what());
+  }
+  m.spacing = config.real("fluid.spacing");
+  m.smoothing_length = config.real("fluid.smoothing_length_ratio") * m.spacing;
+  if (m.kernel == KernelType::wendland_c2 && config.real("fluid.smoothing_length_ratio") < 1.5)
+    throw config.error_at("fluid.smoothing_length_ratio",
+                          "the Wendland C2 kernel needs h >= 1.5 L0 to sum to 1 on the particle lattice");
+  m.density = config.real("fluid.density");
+  m.viscosity = config.real("fluid.viscosity");
+  m.gravity = config.real("fluid.gravity");
+  m.density_error_weight = config.real("fluid.ppe.density_error_weight");
+  m.free_surface_threshold = config.real("fluid.ppe.free_surface_threshold");
+  m.shifting = config.boolean("fluid.shifting.enabled");
+  if (m.shifting) m.shifting_coefficient = config.real("fluid.shifting.coefficient");
+  return m;
+}
+
+TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
+  if (!config.has("fluid.geometry.type"))
+    throw config.error_at("fluid", "sph_solver needs fluid.geometry.type (the walls of the liquid)");
+  const std::string type = config.text("fluid.geometry.type");
+  const bool two_d = model.dimension == 2;
+  const bool planar_type = type == "rectangular_tank" || type == "overflow_tank";
+  if (planar_type && !two_d) throw config.error_at("fluid.geometry.type", type + " is a 2D geometry (fluid.dimension 2)");
+  if (type == "cylindrical_tank" && two_d)
+    throw config.error_at("fluid.geometry.type", "cylindrical_tank is a 3D geometry (fluid.dimension 3)");
+  double edge = 2.0 * model.spacing;
+  if (config.has("fluid.geometry.element_size") && config.real("fluid.geometry.element_size") > 0.0)
+    edge = config.real("fluid.geometry.element_size");
+  try {
+    if (type == "rectangular_tank")
+      return make_rectangular_tank_2d(config.real("fluid.geometry.width"), config.real("fluid.geometry.wall_height"),
+                                      section_depth(model), edge);
+    if (type == "overflow_tank") {
+      OverflowTank2d tank;
+      tank.inner_width = config.real("fluid.geometry.width");
+      tank.inner_wall_height = config.real("fluid.geometry.wall_height");
+      tank.margin = config.real("fluid.geometry.catch_margin");
+      tank.plate_thickness = 2.0 * model.spacing;
+      tank.outer_wall_height = tank.inner_wall_height + 0.5;
+      tank.depth = section_depth(model);
+      tank.target_edge = edge;
+      return make_overflow_tank_2d(tank);
+    }
+    if (type == "cylindrical_tank") {
+      const double radius = config.real("fluid.geometry.radius");
+      const double height = config.real("fluid.geometry.wall_height");
+      const int segments = std::max(12, static_cast<int>(std::ceil(2.0 * std::numbers::pi * radius / edge)));
+      const int layers = std::max(1, static_cast<int>(std::ceil(height / edge)));
+      const int rings = std::max(1, static_cast<int>(std::ceil(radius / edge)));
+      std::optional<DomeRoof> roof;
+      const double dome = config.real("fluid.geometry.dome_radius");
+      if (dome > 0.0) {
+        if (dome < radius) throw config.error_at("fluid.geometry.dome_radius", "must be at least the tank radius");
+        const double rise = dome - std::sqrt(dome * dome - radius * radius);
+        const double arc = dome * std::asin(radius / dome);
+        roof = DomeRoof{dome, std::max(2, static_cast<int>(std::ceil(std::max(arc, rise) / edge)))};
+      }
+      return make_cylindrical_tank(radius, height, segments, layers, rings, roof);
+    }
+    const auto file = config.path("fluid.geometry.file");
+    return type == "stl" ? read_stl(file) : read_gmsh_surface(file).mesh;
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw config.error_at(type == "stl" || type == "gmsh" ? "fluid.geometry.file" : "fluid.geometry.type", e.what());
+  }
+}
+
+std::vector<ProbeSpec> read_probes(const CaseConfig& config) {
+  std::vector<ProbeSpec> probes;
+  for (const ConfigView& record : config.records("fluid.probes")) {
+    ProbeSpec p{record.text("name"), record.text("quantity"), record.vector3("position")};
+    if (config.integer("fluid.dimension") == 2 && p.position.z() != 0.0)
+      throw record.error_at("position", "a 2D probe lies in the plane z = 0");
+    for (const auto& other : probes)
+      if (other.name == p.name) throw record.error_at("name", "probe name '" + p.name + "' is used twice");
+    if (p.name == "fluid") throw record.error_at("name", "'fluid' is the name of the run's global probe file");
+    probes.push_back(p);
+  }
+  return probes;
+}
+
+}  // namespace
+
+FluidCase read_fluid_case(const CaseConfig& config) {
+  config.require_section("fluid", "sph_solver");
+  FluidCase c;
+  c.model = read_model(config);
+  if (!config.has("end_time")) throw config.error_at("end_time", "sph_solver needs end_time (the simulated time)");
+  c.end_time = config.real("end_time");
+  c.walls = read_walls(config, c.model);
+  if (!config.has("fluid.fill.level"))
+    throw config.error_at("fluid.fill", "sph_solver needs fluid.fill.level (the height of the still liquid)");
+  FillSpec fill;
+  fill.spacing = c.model.spacing;
+  fill.density = c.model.density;
+  fill.fill_level = config.real("fluid.fill.level");
+  fill.dimension = c.model.dimension;
+  fill.hydrostatic_pressure = config.boolean("fluid.fill.hydrostatic");
+  fill.gravity = c.model.gravity;
+  if (config.has("fluid.fill.region")) fill.region = box_from(config, "fluid.fill.region");
+  try {
+    c.particles = fill_tank(c.walls, fill);
+  } catch (const std::invalid_argument& e) {
+    throw config.error_at("fluid.fill.level", e.what());
+  }
+  const double support = Kernel(c.model.kernel, c.model.dimension, c.model.smoothing_length).support_radius();
+  if (config.has("fluid.domain")) {
+    c.domain = box_from(config, "fluid.domain");
+  } else {
+    c.domain = c.walls.bounding_box();
+    c.domain.min().array() -= support;
+    c.domain.max().array() += support;
+  }
+  for (const auto& x : c.particles.position)
+    if (!c.domain.contains(x)) throw config.error_at("fluid.domain", "the initial liquid is not inside the domain");
+  c.ppe_options = config.text("fluid.ppe.solver_options");
+  c.adaptive_time_step = config.text("fluid.time_step.mode") == "adaptive";
+  if (c.adaptive_time_step) {
+    c.cfl_number = config.real("fluid.time_step.cfl");
+    c.max_time_step = config.real("fluid.time_step.max");
+  } else {
+    c.fixed_time_step = config.real("fluid.time_step.value");
+  }
+  c.field_interval = config.real("output.field_interval");
+  c.probe_interval = config.real("output.probe_interval");
+  c.rebalance_interval = static_cast<int>(config.integer("fluid.rebalance_interval"));
+  c.probes = read_probes(config);
+  return c;
+}
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,254 @@
+#include "sph_solver/app/fluid_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "common/io/field_series_writer.hpp"
+#include "common/io/probe_file.hpp"
+#include "sph_solver/isph/fluid_probes.hpp"
+#include "sph_solver/isph/fluid_solver.hpp"
+#include "sph_solver/isph/time_step_control.hpp"
+
+namespace tankfsi::sph {
+namespace {
+
+std::size_t at(std::size_t i) { return i; }
+
+/// Probe CSV columns; forces of a 2D section are per metre of depth.
+std::vector<std::string> probe_columns(const std::string& quantity) {
+  if (quantity == "pressure") return {"pressure_Pa"};
+  if (quantity == "velocity") return {"velocity_x_m_s", "velocity_y_m_s", "velocity_z_m_s"};
+  if (quantity == "wave_height") return {"wave_height_m"};
+  return {"front_x_m"};
+}
+
+std::vector<double> probe_values(const FluidSolver& solver, const ProbeSpec& probe, double top) {
+  if (probe.quantity == "pressure") return {pressure_at(solver, probe.position)};
+  if (probe.quantity == "velocity") {
+    const Eigen::Vector3d v = velocity_at(solver, probe.position);
+    return {v.x(), v.y(), v.z()};
+  }
+  if (probe.quantity == "wave_height") return {surface_elevation(solver, probe.position, top)};
+  return {front_position(solver, probe.position, Eigen::Vector3d::UnitX())};
+}
+
+/// Everything the run writes, owned by rank 0 for the CSV files.
+class Outputs {
+ public:
+  Outputs(ProgramContext& context, const FluidCase& c, const FluidSolver& solver)
+      : solver_(solver),
+        top_(c.domain.max().dot(c.model.up())),
+        depth_suffix_(c.model.dimension == 2 ? "_per_m" : ""),
+        particles_(context.comm, context.folder->path(), "fluid"),
+        walls_(context.comm, context.folder->path(), "walls") {
+    if (context.log.rank() == 0) {
+      for (const auto& probe : c.probes)
+        probe_files_.push_back(std::make_unique<ProbeFile>(context.folder->probes() / (probe.name + ".csv"),
+                                                           probe_columns(probe.quantity), c.field_interval));
+      global_ = std::make_unique<ProbeFile>(
+          context.folder->probes() / "fluid.csv",
+          std::vector<std::string>{"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
+                                   "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_,
+                                   "force_z_N" + depth_suffix_, "kinetic_energy_J" + depth_suffix_, "time_step_s",
+                                   "ppe_iterations"},
+          c.field_interval);
+    }
+    probes_ = c.probes;
+  }
+
+  void sample(double t, const StepReport& report) {
+    for (std::size_t k = 0; k < probes_.size(); ++k) {
+      const auto values = probe_values(solver_, probes_[k], top_);
+      if (!probe_files_.empty()) probe_files_[k]->append(t, values);
+    }
+    const auto forces = solver_.total_wall_forces();
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (const auto& f : forces) total += f;
+    const double count = static_cast<double>(solver_.global_particle_count());
+    const double energy = kinetic_energy(solver_);
+    if (global_)
+      global_->append(t, std::vector<double>{count, static_cast<double>(solver_.removed_count()),
+                                             solver_.removed_volume(), total.x(), total.y(), total.z(), energy,
+                                             report.time_step, static_cast<double>(report.ppe_iterations)});
+    last_total_force_ = total;
+  }
+
+  void snapshot(double t, const Particles& particles) {
+    std::vector<double> positions;
+    std::vector<double> velocities;
+    positions.reserve(3 * particles.size());
+    velocities.reserve(3 * particles.size());
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        positions.push_back(particles.position[at(i)][k]);
+        velocities.push_back(particles.velocity[at(i)][k]);
+      }
+    particles_.write_particles(t, ParticleSnapshot{particles.id, positions,
+                                                   {NamedField{"velocity", 3, velocities},
+                                                    NamedField{"pressure", 1, particles.pressure}}});
+    write_walls(t);
+  }
+
+  void flush() {
+    for (auto& file : probe_files_) file->flush();
+    if (global_) global_->flush();
+  }
+
+  [[nodiscard]] const Eigen::Vector3d& last_total_force() const { return last_total_force_; }
+
+ private:
+  /// The wall mesh with the fluid's force per vertex and the pressure it means
+  /// (normal force over a third of the adjacent triangles' area; in 2D per metre of
+  /// the mesh's depth). Rank 0 writes the whole mesh.
+  void write_walls(double t) {
+    const auto forces = solver_.total_wall_forces();
+    const TriangleMesh& mesh = solver_.walls().mesh();
+    const bool writer = rank() == 0;
+    std::vector<double> area(mesh.vertex_count(), 0.0);
+    for (std::size_t t_index = 0; t_index < mesh.triangle_count(); ++t_index)
+      for (const int v : mesh.triangles()[t_index]) area[static_cast<std::size_t>(v)] += mesh.face_areas()[t_index] / 3.0;
+    const Eigen::AlignedBox3d box = mesh.bounding_box();
+    const double depth = solver_.model().dimension == 2 ? box.max().z() - box.min().z() : 1.0;
+    std::vector<std::int64_t> ids, triangles;
+    std::vector<double> positions, force_values, pressure;
+    if (writer) {
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        ids.push_back(static_cast<std::int64_t>(v));
+        for (int k = 0; k < 3; ++k) {
+          positions.push_back(mesh.vertices()[v][k]);
+          force_values.push_back(forces[v][k]);
+        }
+        const double a = area[v] / depth;
+        pressure.push_back(a > 0.0 ? -forces[v].dot(mesh.vertex_normals()[v]) / a : 0.0);
+      }
+      for (const auto& tri : mesh.triangles())
+        for (const int v : tri) triangles.push_back(v);
+    }
+    MeshSnapshot snapshot{ids, positions, std::nullopt, {NamedField{"force", 3, force_values}, NamedField{"pressure", 1, pressure}}, {}};
+    if (walls_.snapshot_count() == 0) snapshot.cells = SurfaceCells{triangles, {}};
+    walls_.write_mesh(t, snapshot);
+  }
+
+  [[nodiscard]] int rank() const {
+    int r = 0;
+    MPI_Comm_rank(solver_.comm(), &r);
+    return r;
+  }
+
+  const FluidSolver& solver_;
+  double top_;
+  std::string depth_suffix_;
+  std::vector<ProbeSpec> probes_;
+  FieldSeriesWriter particles_;
+  FieldSeriesWriter walls_;
+  std::vector<std::unique_ptr<ProbeFile>> probe_files_;
+  std::unique_ptr<ProbeFile> global_;
+  Eigen::Vector3d last_total_force_ = Eigen::Vector3d::Zero();
+};
+
+/// Running statistics of the steps for summary.json.
+struct RunStatistics {
+  long long steps = 0;
+  double min_dt = std::numeric_limits<double>::infinity();
+  double max_dt = 0.0;
+  long long ppe_iterations = 0;
+  int max_ppe_iterations = 0;
+  double max_density_error = 0.0;
+  double particle_steps = 0.0;
+  std::map<std::string, long long> limiting;
+
+  void add(const StepReport& r, long long particles, const std::string& limit) {
+    ++steps;
+    min_dt = std::min(min_dt, r.time_step);
+    max_dt = std::max(max_dt, r.time_step);
+    ppe_iterations += r.ppe_iterations;
+    max_ppe_iterations = std::max(max_ppe_iterations, r.ppe_iterations);
+    max_density_error = std::max(max_density_error, r.max_density_error);
+    particle_steps += static_cast<double>(particles);
+    ++limiting[limit];
+  }
+};
+
+}  // namespace
+
+nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotion& motion) {
+  const auto wall_clock_start = std::chrono::steady_clock::now();
+  FluidSolver solver(context.comm, c.model, std::move(c.walls), std::move(c.particles), c.domain, c.ppe_options,
+                     &context.timers);
+  solver.rebalance_interval = c.rebalance_interval;
+  context.log.info("fluid: ", solver.global_particle_count(), " particles, ", solver.walls().mesh().triangle_count(),
+                   " wall triangles, h = ", c.model.smoothing_length, " m, kernel ", kernel_name(c.model.kernel));
+  Outputs outputs(context, c, solver);
+  RunStatistics stats;
+  double t = 0.0;
+  StepReport last;
+  outputs.sample(t, last);
+  outputs.snapshot(t, solver.particles());
+  double next_probe = c.probe_interval;
+  double next_field = c.field_interval;
+  const double end = c.end_time;
+  Particles last_good = solver.particles();
+  try {
+    while (t < end * (1.0 - 1e-12)) {
+      const Eigen::Vector3d force = c.model.body_force(motion.acceleration(t));
+      const double speed = solver.max_speed();
+      const auto limits = time_step_limits(c.model, c.cfl_number, c.adaptive_time_step ? c.max_time_step : c.fixed_time_step,
+                                           speed, force.norm());
+      double dt = c.adaptive_time_step ? limits.smallest() : c.fixed_time_step;
+      if (!c.adaptive_time_step) {
+        // Stability bound of a fixed step: a particle must not cross h in one step.
+        const auto bound = time_step_limits(c.model, 1.0, c.fixed_time_step, speed, force.norm());
+        if (dt > bound.smallest() * (1.0 + 1e-12))
+          throw std::runtime_error("the fixed time step " + std::to_string(dt) + " s exceeds the " + bound.limiting() +
+                                   " stability limit " + std::to_string(bound.smallest()) + " s at t = " +
+                                   std::to_string(t) + " s (max speed " + std::to_string(speed) +
+                                   " m/s); use a smaller fluid.time_step.value or the adaptive mode");
+      }
+      dt = std::min(dt, end - t);
+      last_good = solver.particles();
+      last = solver.step(t, dt, motion.acceleration(t + 0.5 * dt));
+      t += dt;
+      stats.add(last, solver.global_particle_count(), c.adaptive_time_step ? limits.limiting() : "fixed");
+      if (t >= next_probe * (1.0 - 1e-12)) {
+        outputs.sample(t, last);
+        next_probe += c.probe_interval * std::max(1.0, std::floor((t - next_probe) / c.probe_interval) + 1.0);
+      }
+      if (t >= next_field * (1.0 - 1e-12)) {
+        outputs.snapshot(t, solver.particles());
+        next_field += c.field_interval * std::max(1.0, std::floor((t - next_field) / c.field_interval) + 1.0);
+        context.log.info("t = ", t, " s, step ", stats.steps, ", dt = ", dt, " s, PPE ", last.ppe_iterations,
+                         " iterations, max |v| = ", last.max_speed, " m/s");
+      }
+    }
+  } catch (const std::runtime_error& e) {
+    outputs.flush();
+    outputs.snapshot(t + 1e-9, last_good);
+    throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + std::to_string(t) +
+                             " s) is the final snapshot of fluid.xdmf");
+  }
+  outputs.flush();
+  const double wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_clock_start).count();
+  const auto& force = outputs.last_total_force();
+  return {{"fluid",
+           {{"particles", solver.global_particle_count()},
+            {"steps", stats.steps},
+            {"end_time_s", t},
+            {"time_step_s", {{"min", stats.min_dt}, {"max", stats.max_dt}, {"mean", t / std::max<long long>(stats.steps, 1)}}},
+            {"time_step_limited_by", stats.limiting},
+            {"ppe_iterations", {{"mean", static_cast<double>(stats.ppe_iterations) / std::max<long long>(stats.steps, 1)},
+                                {"max", stats.max_ppe_iterations}}},
+            {"max_density_error", stats.max_density_error},
+            {"overflow", {{"particles", solver.removed_count()}, {"volume_m3", solver.removed_volume()}}},
+            {"final_wall_force_N", {force.x(), force.y(), force.z()}},
+            {"wall_seconds", wall_seconds},
+            {"particle_steps_per_second", stats.particle_steps / wall_seconds},
+            {"wall_seconds_per_simulated_second", t > 0.0 ? wall_seconds / t : 0.0}}}};
+}
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,292 @@
+#include "sph_solver/isph/fluid_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "sph_solver/isph/particle_terms.hpp"
+#include "sph_solver/neighbours/cell_list.hpp"
+
+namespace tankfsi::sph {
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+double global_max(MPI_Comm comm, double local) {
+  double result = 0.0;
+  MPI_Allreduce(&local, &result, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return result;
+}
+
+long long global_sum(MPI_Comm comm, long long local) {
+  long long result = 0;
+  MPI_Allreduce(&local, &result, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  return result;
+}
+
+double largest_norm(const std::vector<Eigen::Vector3d>& vectors) {
+  double largest = 0.0;
+  for (const auto& v : vectors) largest = std::max(largest, v.norm());
+  return largest;
+}
+
+/// Owned values followed by the ghosts' copies.
+template <class T>
+std::vector<T> with_ghosts(const Halo& halo, std::vector<T> owned) {
+  halo.exchange(owned);
+  return owned;
+}
+
+/// Every owned and ghost point, its neighbour list and the owned particles' walls.
+struct Configuration {
+  std::vector<Eigen::Vector3d> position;
+  NeighbourList neighbours;
+  WallContacts walls;
+};
+
+Configuration configuration(const FluidSolver& solver, std::vector<Eigen::Vector3d> all_positions, int owned) {
+  Configuration c;
+  c.position = std::move(all_positions);
+  CellList cells(solver.model().dimension);
+  cells.build(c.position, solver.kernel().support_radius());
+  c.neighbours = cells.neighbour_list();
+  c.walls = find_wall_contacts(solver.walls(), std::span(c.position).first(at(owned)), solver.model().dimension);
+  return c;
+}
+
+/// True for a free-surface particle and for one with a free-surface neighbour.
+/// Lind et al. (2012) shift such particles only along the surface; with the surface
+/// normal taken from grad C itself that tangential part is zero, so they are not
+/// shifted at all — a normal shift would pack the layers under the surface into it
+/// until the surface particles no longer count as surface (rho* >= beta rho0).
+bool near_free_surface(const Neighbourhood& n, const std::vector<unsigned char>& free_surface, int i) {
+  if (free_surface[at(i)] != 0) return true;
+  const auto neighbours = n.neighbours.neighbours_of(i);
+  return std::any_of(neighbours.begin(), neighbours.end(), [&](int j) { return free_surface[at(j)] != 0; });
+}
+
+}  // namespace
+
+FluidSolver::FluidSolver(MPI_Comm comm, const FluidModel& model, TriangleMesh walls, Particles particles,
+                         const Eigen::AlignedBox3d& domain, const std::string& ppe_options, StageTimers* timers)
+    : comm_(comm),
+      model_(model),
+      kernel_(model.kernel, model.dimension, model.smoothing_length),
+      walls_(std::move(walls), model_, kernel_),
+      particles_(std::move(particles)),
+      domain_(domain),
+      decomposition_(comm, model.dimension),
+      ppe_(comm, ppe_options),
+      timers_(timers != nullptr ? timers : &fallback_timers_),
+      wall_force_(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero()) {
+  MPI_Comm_rank(comm_, &rank_);
+  int size = 1;
+  MPI_Comm_size(comm_, &size);
+  // Every rank holds every particle: keep a disjoint share, then balance and migrate.
+  std::vector<int> share;
+  for (int i = 0; i < particles_.count(); ++i)
+    if (particles_.id[at(i)] % size == rank_) share.push_back(i);
+  particles_.reorder(share);
+  decomposition_.balance(particles_.position);
+  decomposition_.migrate(particles_);
+}
+
+StageTimers::Scope FluidSolver::stage(const std::string& name) { return timers_->time(name); }
+
+double FluidSolver::max_speed() const { return global_max(comm_, largest_norm(particles_.velocity)); }
+
+long long FluidSolver::global_particle_count() const { return global_sum(comm_, particles_.count()); }
+
+std::vector<Eigen::Vector3d> FluidSolver::total_wall_forces() const {
+  std::vector<Eigen::Vector3d> total(wall_force_.size());
+  MPI_Allreduce(wall_force_.data(), total.data(), static_cast<int>(3 * wall_force_.size()), MPI_DOUBLE, MPI_SUM, comm_);
+  return total;
+}
+
+void FluidSolver::remove_escaped() {
+  std::vector<int> kept;
+  kept.reserve(particles_.size());
+  long long removed = 0;
+  double volume = 0.0;
+  for (int i = 0; i < particles_.count(); ++i) {
+    const Eigen::Vector3d& x = particles_.position[at(i)];
+    if (x.allFinite() && domain_.contains(x)) {
+      kept.push_back(i);
+    } else {
+      ++removed;
+      volume += particles_.mass[at(i)] / model_.density;
+    }
+  }
+  if (removed > 0) particles_.reorder(kept);
+  removed_this_step_ = global_sum(comm_, removed);
+  double total_volume = 0.0;
+  MPI_Allreduce(&volume, &total_volume, 1, MPI_DOUBLE, MPI_SUM, comm_);
+  removed_count_ += removed_this_step_;
+  removed_volume_ += total_volume;
+}
+
+void FluidSolver::redistribute() {
+  if (steps_ % rebalance_interval == 0) {
+    decomposition_.balance(particles_.position);
+    decomposition_.migrate(particles_);
+    CellList cells(model_.dimension);
+    cells.build(particles_.position, kernel_.support_radius());
+    particles_.reorder(cells.cell_order());
+  } else {
+    decomposition_.migrate(particles_);
+  }
+}
+
+StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_acceleration) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("FluidSolver::step: dt must be positive");
+  StepReport report;
+  report.time_step = dt;
+  const Eigen::Vector3d body_force = model_.body_force(ground_acceleration);
+  const double rho0 = model_.density;
+  const double speed_before = max_speed();
+  {
+    auto scope = stage("neighbours");
+    remove_escaped();
+    redistribute();
+    // Ghosts must cover every neighbour at x* too: the support plus twice the
+    // largest displacement of the step (two particles approaching each other).
+    const double margin = std::max(0.5 * model_.spacing, 2.5 * dt * (speed_before + dt * body_force.norm()));
+    halo_.build(comm_, decomposition_, particles_.position, kernel_.support_radius() + margin);
+  }
+  const int owned = particles_.count();
+  std::fill(wall_force_.begin(), wall_force_.end(), Eigen::Vector3d::Zero());
+  std::vector<std::int64_t> global_index(at(owned));
+  {
+    long long offset = 0;
+    const long long count = owned;
+    MPI_Exscan(&count, &offset, 1, MPI_LONG_LONG, MPI_SUM, comm_);
+    if (rank_ == 0) offset = 0;  // MPI_Exscan leaves rank 0's result undefined
+    for (int i = 0; i < owned; ++i) global_index[at(i)] = offset + i;
+  }
+  const auto mass = with_ghosts(halo_, particles_.mass);
+  const auto velocity_n = with_ghosts(halo_, particles_.velocity);
+  const auto index = with_ghosts(halo_, global_index);
+
+  // 1. Predictor at x^n.
+  std::vector<Eigen::Vector3d> x_star(at(owned));
+  std::vector<Eigen::Vector3d> v_star(at(owned));
+  {
+    Configuration now;
+    {
+      auto scope = stage("neighbours");
+      now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
+    }
+    auto scope = stage("predictor");
+    const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
+    const auto density = with_ghosts(halo_, kernel_density(n, mass));
+    const auto viscous = viscous_acceleration(n, mass, density, velocity_n, wall_force_);
+    for (int i = 0; i < owned; ++i) {
+      v_star[at(i)] = velocity_n[at(i)] + dt * (viscous[at(i)] + body_force);
+      if (model_.dimension == 2) v_star[at(i)].z() = 0.0;
+      x_star[at(i)] = particles_.position[at(i)] + dt * v_star[at(i)];
+    }
+  }
+
+  // 2. Pressure Poisson equation at x*.
+  Configuration next;
+  {
+    auto scope = stage("neighbours");
+    next = configuration(*this, with_ghosts(halo_, x_star), owned);
+  }
+  const Neighbourhood n{kernel_, model_, next.position, next.neighbours, next.walls, walls_.mesh(), owned};
+  std::vector<double> density;
+  std::vector<unsigned char> free_surface(at(owned));
+  std::vector<double> source(at(owned));
+  {
+    auto scope = stage("ppe_assemble");
+    density = kernel_density(n, mass);
+    // Free surface: a low density, or a kernel support that is not full (div r
+    // below 1.5 in 2D, 2.4 in 3D: Lind et al. 2012). The second catches a surface
+    // layer squeezed by a wave, whose density alone would call it interior.
+    const auto spread = position_divergence(n, mass, with_ghosts(halo_, density));
+    const double spread_threshold = model_.dimension == 2 ? 1.5 : 2.4;
+    double max_error = 0.0;
+    long long surface = 0;
+    for (int i = 0; i < owned; ++i) {
+      free_surface[at(i)] =
+          density[at(i)] < model_.free_surface_threshold * rho0 || spread[at(i)] < spread_threshold ? 1 : 0;
+      surface += free_surface[at(i)];
+      if (free_surface[at(i)] == 0) max_error = std::max(max_error, std::abs(density[at(i)] - rho0) / rho0);
+    }
+    report.free_surface_particles = global_sum(comm_, surface);
+    report.max_density_error = global_max(comm_, max_error);
+    halo_.exchange(density);
+    halo_.exchange(free_surface);
+    const auto v_all = with_ghosts(halo_, v_star);
+    const auto divergence = velocity_divergence(n, mass, density, v_all);
+    for (int i = 0; i < owned; ++i) {
+      double wall_share = 0.0;
+      for (const WallContact& c : n.walls.of(i))
+        wall_share += 2.0 * c.values.z2 * wall_pressure_gradient(model_, c, v_star[at(i)], dt) *
+                      (c.distance + c.values.depth2);
+      source[at(i)] = rho0 / dt * divergence[at(i)] +
+                      model_.density_error_weight * (rho0 - density[at(i)]) / (dt * dt) - wall_share;
+    }
+  }
+  std::vector<double> pressure = particles_.pressure;
+  {
+    auto scope = stage("ppe_solve");
+    try {
+      const auto solved = ppe_.solve(n, mass, density, index, free_surface, source, pressure);
+      report.ppe_iterations = solved.iterations;
+      report.ppe_residual = solved.residual_norm;
+    } catch (const std::runtime_error& e) {
+      std::ostringstream message;
+      message << "step " << steps_ + 1 << " at t = " << t << " s: " << e.what();
+      throw std::runtime_error(message.str());
+    }
+  }
+
+  // 3. Corrector and positions; 4. shifting.
+  {
+    auto scope = stage("corrector");
+    halo_.exchange(pressure);
+    const auto pressure_term = pressure_acceleration(n, mass, density, pressure, v_star, dt, wall_force_);
+    std::vector<Eigen::Vector3d> v_new(at(owned));
+    for (int i = 0; i < owned; ++i) {
+      v_new[at(i)] = v_star[at(i)] + dt * pressure_term[at(i)];
+      if (model_.dimension == 2) v_new[at(i)].z() = 0.0;
+      particles_.position[at(i)] += 0.5 * dt * (particles_.velocity[at(i)] + v_new[at(i)]);
+      particles_.pressure[at(i)] = pressure[at(i)];
+    }
+    if (model_.shifting) {
+      const double speed = global_max(comm_, largest_norm(v_new));
+      const double diffusion = model_.shifting_coefficient * model_.smoothing_length * speed * dt;
+      const double cap = 0.2 * model_.spacing;
+      const auto gradient = concentration_gradient(n, mass, density);
+      std::vector<Eigen::Vector3d> shift(at(owned), Eigen::Vector3d::Zero());
+      for (int i = 0; i < owned; ++i) {
+        if (near_free_surface(n, free_surface, i)) continue;
+        Eigen::Vector3d dr = -diffusion * gradient[at(i)];
+        if (model_.dimension == 2) dr.z() = 0.0;
+        const double length = dr.norm();
+        shift[at(i)] = length > cap ? dr * (cap / length) : dr;
+      }
+      const auto v_all = with_ghosts(halo_, v_new);
+      const auto change = velocity_change_over_shift(n, mass, density, v_all, shift);
+      for (int i = 0; i < owned; ++i) {
+        particles_.position[at(i)] += shift[at(i)];
+        v_new[at(i)] += change[at(i)];
+      }
+    }
+    particles_.velocity = std::move(v_new);
+  }
+  ++steps_;
+  report.removed_particles = removed_this_step_;
+  report.max_speed = max_speed();
+  if (!std::isfinite(report.max_speed)) {
+    std::ostringstream message;
+    message << "step " << steps_ << " at t = " << t << " s: a particle velocity is not finite";
+    throw std::runtime_error(message.str());
+  }
+  return report;
+}
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,108 @@
+#pragma once
+// FluidSolver: the ISPH time step (METHOD.md §1) on the particles of one rank of a
+// spatially decomposed fluid, with triangle-patch walls (§2).
+//
+// One step n -> n+1:
+//   0. particles outside the domain box are removed (overflow, counted); every
+//      `rebalance_interval` steps the decomposition is recomputed and the owned
+//      particles are re-sorted in cell order; particles migrate to their owners;
+//      the halo (ghost particles within the kernel support plus a margin that
+//      covers the step's motion) is rebuilt.
+//   1. predictor at x^n: v* = v^n + dt (Morris viscosity + F), x* = x^n + dt v*
+//   2. PPE at x*: density rho* (walls included) flags the free surface; source
+//      S = rho0/dt div v* + gamma (rho0 - rho*)/dt^2; solve for P^{n+1} (PETSc)
+//   3. corrector: v^{n+1} = v* - dt grad P / rho, x^{n+1} = x^n + dt (v^n + v^{n+1})/2
+//   4. shifting (Lind et al. 2012): dr = -D grad C with D = A h |v|max dt, capped at
+//      0.2 L0, none on or next to the free surface; the velocity follows the shift to first
+//      order. grad C is taken at x* with the step's neighbour list (one neighbour
+//      search less than at x^{n+1}; the shift is a regularisation, not physics).
+// Wall forces (force of the fluid on each wall vertex) of the step: the viscous
+// part at x^n plus the pressure part at x*.
+#include <mpi.h>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/log/stage_timers.hpp"
+#include "sph_solver/isph/fluid_model.hpp"
+#include "sph_solver/isph/pressure_poisson.hpp"
+#include "sph_solver/isph/wall_contacts.hpp"
+#include "sph_solver/kernels/kernel.hpp"
+#include "sph_solver/parallel/domain_decomposition.hpp"
+#include "sph_solver/parallel/halo.hpp"
+#include "sph_solver/particles/particles.hpp"
+
+namespace tankfsi::sph {
+
+struct StepReport {
+  double time_step = 0.0;
+  int ppe_iterations = 0;
+  double ppe_residual = 0.0;
+  long long free_surface_particles = 0;  ///< all ranks
+  long long removed_particles = 0;       ///< this step, all ranks
+  double max_speed = 0.0;                ///< after the step, all ranks
+  double max_density_error = 0.0;        ///< max |rho* - rho0| / rho0 over the liquid's interior
+};
+
+class FluidSolver {
+ public:
+  /// `particles`: the initial particles, the same complete set on every rank
+  /// (filling is deterministic); each rank keeps its share. `domain`: particles
+  /// leaving it are removed. Collective.
+  FluidSolver(MPI_Comm comm, const FluidModel& model, TriangleMesh walls, Particles particles,
+              const Eigen::AlignedBox3d& domain, const std::string& ppe_options, StageTimers* timers = nullptr);
+
+  /// Advances by dt from time t under ground acceleration a_g (the body force is
+  /// F = g - a_g at t + dt/2). Collective. Throws std::runtime_error if the PPE
+  /// fails or dt breaches the motion margin of the halo.
+  StepReport step(double t, double dt, const Eigen::Vector3d& ground_acceleration);
+
+  /// Collective: the largest speed over all ranks.
+  [[nodiscard]] double max_speed() const;
+
+  [[nodiscard]] const FluidModel& model() const { return model_; }
+  [[nodiscard]] const Kernel& kernel() const { return kernel_; }
+  [[nodiscard]] const Particles& particles() const { return particles_; }
+  [[nodiscard]] const WallModel& walls() const { return walls_; }
+  [[nodiscard]] MPI_Comm comm() const { return comm_; }
+  /// This rank's contribution to the force of the fluid on each wall vertex in the
+  /// last step (sum over ranks with total_wall_forces()).
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& local_wall_forces() const { return wall_force_; }
+  /// Collective: the wall forces of the last step summed over the ranks.
+  [[nodiscard]] std::vector<Eigen::Vector3d> total_wall_forces() const;
+  /// Collective: all particles removed so far and their volume (mass / rho0).
+  [[nodiscard]] long long removed_count() const { return removed_count_; }
+  [[nodiscard]] double removed_volume() const { return removed_volume_; }
+  [[nodiscard]] long long global_particle_count() const;
+
+  int rebalance_interval = 20;
+
+ private:
+  void remove_escaped();
+  void redistribute();
+  StageTimers::Scope stage(const std::string& name);
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  FluidModel model_;
+  Kernel kernel_;
+  WallModel walls_;
+  Particles particles_;
+  Eigen::AlignedBox3d domain_;
+  DomainDecomposition decomposition_;
+  Halo halo_;
+  PressurePoisson ppe_;
+  StageTimers* timers_;
+  StageTimers fallback_timers_;
+  std::vector<Eigen::Vector3d> wall_force_;
+  long long steps_ = 0;
+  long long removed_count_ = 0;
+  double removed_volume_ = 0.0;
+  long long removed_this_step_ = 0;
+};
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,90 @@
+#pragma once
+// The SPH sums of one ISPH step (METHOD.md §1, eqs 3-6, with the wall terms of
+// §2, eqs 11-14), each for the owned particles 0 .. owned-1 over their neighbours
+// among owned and ghost particles, plus the share of the walls behind them.
+//
+// Notation as METHOD.md: x_ij = x_i - x_j, r = |x_ij|, grad_i W_ij = x_ij/r W'(r),
+// V_j = m_j / rho_j, eta^2 = 0.01 h^2. Wall terms use the tables Z_k(r_iw) with the
+// linear-in-depth extrapolation of pressure and velocity into the wall
+// (representative depths d_k) and the Neumann wall pressure of the projection,
+// dP/dn = rho0 (v*_i - v_wall)·n / dt — which is METHOD.md's rho0 (F - a_wall)·n
+// for a particle moving with the wall (v^n·n = v_wall·n), and also stops a particle
+// that approaches the wall. It gives, with no division by r_iw:
+//   P_i - P_w(d) = dP/dn (r_iw + d)
+//   v_i - v_w(d) = (v_i - v_ws)(1 + d / r_iw)   (no-slip; r_iw floored at L0/4)
+// Because the wall's impermeability enters the PPE through this Neumann condition,
+// the velocity divergence has no wall share (counting the wall velocity there too
+// would count the wall twice: a liquid at rest would not stay hydrostatic).
+#include <Eigen/Core>
+
+#include <span>
+#include <vector>
+
+#include "sph_solver/isph/fluid_model.hpp"
+#include "sph_solver/isph/wall_contacts.hpp"
+#include "sph_solver/kernels/kernel.hpp"
+#include "sph_solver/neighbours/neighbour_list.hpp"
+
+namespace tankfsi::sph {
+
+/// Positions and neighbours of owned + ghost particles; rows 0 .. owned-1 are used.
+struct Neighbourhood {
+  const Kernel& kernel;
+  const FluidModel& model;
+  std::span<const Eigen::Vector3d> position;  ///< owned then ghosts
+  const NeighbourList& neighbours;
+  const WallContacts& walls;                  ///< for the owned particles
+  const TriangleMesh& wall_mesh;
+  int owned = 0;
+};
+
+/// Kernel-sum density rho_i = sum_j m_j W_ij + m_i W(0) + rho0 sum_w Z0 (eq 11).
+[[nodiscard]] std::vector<double> kernel_density(const Neighbourhood& n, std::span<const double> mass);
+
+/// div r_i = -sum_j V_j x_ij · grad_i W_ij, with the walls' share
+/// -Z1 (r_iw + d1) + (D - 1) Z3: D inside the liquid (a full support), about D/2 at
+/// the free surface (Lee et al. 2008; Lind et al. 2012), so it finds surface particles
+/// even where the density is not yet reduced (a surface layer squeezed by a wave).
+[[nodiscard]] std::vector<double> position_divergence(const Neighbourhood& n, std::span<const double> mass,
+                                                      std::span<const double> density);
+
+/// Morris viscous acceleration (mu/rho lap v)_i (eq 5) with the wall term
+/// 2 mu / rho_i Z2 (v_i - v_w(d2)) (eq 14). `wall_force` gets -m_i times the wall
+/// part per vertex.
+[[nodiscard]] std::vector<Eigen::Vector3d> viscous_acceleration(const Neighbourhood& n, std::span<const double> mass,
+                                                                std::span<const double> density,
+                                                                std::span<const Eigen::Vector3d> velocity,
+                                                                std::vector<Eigen::Vector3d>& wall_force);
+
+/// (div v)_i = -(1/rho_i) sum_j m_j v_ij · grad_i W_ij (no wall share, see above).
+[[nodiscard]] std::vector<double> velocity_divergence(const Neighbourhood& n, std::span<const double> mass,
+                                                      std::span<const double> density,
+                                                      std::span<const Eigen::Vector3d> velocity);
+
+/// -(grad P / rho)_i = -sum_j m_j (P_i/rho_i^2 + P_j/rho_j^2) grad_i W_ij (eq 4) and
+/// the wall term -Z1 n (rho0 P_i / rho_i^2 + P_w(d1) / rho0). `wall_force` gets
+/// -m_i times the wall part per vertex.
+[[nodiscard]] std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::span<const double> mass,
+                                                                 std::span<const double> density,
+                                                                 std::span<const double> pressure,
+                                                                 std::span<const Eigen::Vector3d> predicted_velocity,
+                                                                 double dt, std::vector<Eigen::Vector3d>& wall_force);
+
+/// dP/dn at a wall contact: rho0 (v*_i - v_wall)·n / dt (see above).
+[[nodiscard]] double wall_pressure_gradient(const FluidModel& model, const WallContact& contact,
+                                            const Eigen::Vector3d& v_star, double dt);
+
+/// grad C_i = sum_j V_j grad_i W_ij + Z1 n per wall: zero inside a uniform
+/// particle distribution (walls included), pointing to where particles crowd.
+[[nodiscard]] std::vector<Eigen::Vector3d> concentration_gradient(const Neighbourhood& n, std::span<const double> mass,
+                                                                  std::span<const double> density);
+
+/// (dr · grad) v_i = sum_j V_j (v_j - v_i)(grad_i W_ij · dr_i): the change of the
+/// velocity field over a shift dr_i (Taylor, first order).
+[[nodiscard]] std::vector<Eigen::Vector3d> velocity_change_over_shift(const Neighbourhood& n,
+                                                                      std::span<const double> mass,
+                                                                      std::span<const double> density,
+                                                                      std::span<const Eigen::Vector3d> velocity,
+                                                                      std::span<const Eigen::Vector3d> shift);
+
+}  // namespace tankfsi::sph

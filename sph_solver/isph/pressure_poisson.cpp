@@ -1,0 +1,158 @@
+#include "sph_solver/isph/pressure_poisson.hpp"
+
+#include <cctype>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace tankfsi::sph {
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != 0) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")");
+}
+
+bool is_option_name(const std::string& token) {
+  return token.size() > 1 && token[0] == '-' && !(std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.');
+}
+
+/// A row of the (negated) PPE matrix in global column indices.
+struct Row {
+  std::vector<PetscInt> columns;
+  std::vector<PetscScalar> values;
+};
+
+}  // namespace
+
+void apply_default_petsc_options(const std::string& options) {
+  std::istringstream in(options);
+  std::vector<std::string> tokens;
+  for (std::string token; in >> token;) tokens.push_back(token);
+  for (std::size_t k = 0; k < tokens.size(); ++k) {
+    const std::string& name = tokens[k];
+    if (!is_option_name(name))
+      throw std::invalid_argument("'" + name + "' is not a PETSc option name (options start with '-')");
+    std::string value;
+    if (k + 1 < tokens.size() && !is_option_name(tokens[k + 1])) value = tokens[++k];
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &given), "PetscOptionsHasName");
+    if (!given) check(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()),
+                      "PetscOptionsSetValue");
+  }
+}
+
+PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options) : comm_(comm) {
+  apply_default_petsc_options(case_options);
+  check(KSPCreate(comm_, &ksp_), "KSPCreate");
+  check(KSPSetOptionsPrefix(ksp_, "ppe_"), "KSPSetOptionsPrefix");
+  check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCHYPRE), "PCSetType");
+  // rtol 1e-8: the pressure then balances gravity to ~1e-8 of rho g H, far below
+  // the 1 % hydrostatic tolerance, while the warm start keeps iterations low.
+  check(KSPSetTolerances(ksp_, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
+  check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+}
+
+PressurePoisson::~PressurePoisson() {
+  if (ksp_ != nullptr) KSPDestroy(&ksp_);
+}
+
+PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const double> mass,
+                                      std::span<const double> density, std::span<const std::int64_t> global_index,
+                                      std::span<const unsigned char> free_surface, std::span<const double> source,
+                                      std::span<double> pressure) {
+  const int owned = n.owned;
+  const double eta2 = n.model.eta_squared();
+  const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
+  std::vector<Row> rows(at(owned));
+  std::vector<PetscInt> diagonal_nonzeros(at(owned), 1);
+  std::vector<PetscInt> off_diagonal_nonzeros(at(owned), 0);
+  for (int i = 0; i < owned; ++i) {
+    Row& row = rows[at(i)];
+    row.columns.push_back(static_cast<PetscInt>(global_index[at(i)]));
+    row.values.push_back(1.0);
+    if (free_surface[at(i)] != 0) continue;
+    double diagonal = 0.0;
+    const Eigen::Vector3d& x_i = n.position[at(i)];
+    for (const int j : n.neighbours.neighbours_of(i)) {
+      const double r = (x_i - n.position[at(j)]).norm();
+      const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
+      const double a = 2.0 * volume * r * n.kernel.derivative(r) / (r * r + eta2);
+      diagonal -= a;
+      if (free_surface[at(j)] != 0) continue;
+      row.columns.push_back(static_cast<PetscInt>(global_index[at(j)]));
+      row.values.push_back(a);
+      ++(j < owned ? diagonal_nonzeros : off_diagonal_nonzeros)[at(i)];
+    }
+    // An isolated particle (no neighbours, all on the surface) would give a zero row.
+    row.values[0] = diagonal > 0.0 ? diagonal : 1.0;
+  }
+
+  Mat matrix = nullptr;
+  Vec rhs = nullptr;
+  Vec solution = nullptr;
+  check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, diagonal_nonzeros.data(), 0,
+                     off_diagonal_nonzeros.data(), &matrix),
+        "MatCreateAIJ");
+  check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  for (int i = 0; i < owned; ++i) {
+    const Row& row = rows[at(i)];
+    const PetscInt global_row = first_row + i;
+    check(MatSetValues(matrix, 1, &global_row, static_cast<PetscInt>(row.columns.size()), row.columns.data(),
+                       row.values.data(), INSERT_VALUES),
+          "MatSetValues");
+  }
+  check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+
+  check(MatCreateVecs(matrix, &solution, &rhs), "MatCreateVecs");
+  {
+    PetscScalar* b = nullptr;
+    PetscScalar* x = nullptr;
+    check(VecGetArray(rhs, &b), "VecGetArray");
+    check(VecGetArray(solution, &x), "VecGetArray");
+    for (int i = 0; i < owned; ++i) {
+      const bool surface = free_surface[at(i)] != 0;
+      b[i] = surface ? 0.0 : -source[at(i)];
+      x[i] = surface ? 0.0 : pressure[at(i)];
+    }
+    check(VecRestoreArray(rhs, &b), "VecRestoreArray");
+    check(VecRestoreArray(solution, &x), "VecRestoreArray");
+  }
+
+  // Particles migrate and leave: the local size changes between steps, which a
+  // KSP only accepts after a reset (its options and type are kept).
+  if (owned != solved_size_) check(KSPReset(ksp_), "KSPReset");
+  solved_size_ = owned;
+  check(KSPSetOperators(ksp_, matrix, matrix), "KSPSetOperators");
+  const PetscErrorCode solve_code = KSPSolve(ksp_, rhs, solution);
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  PpeSolveReport report;
+  PetscInt iterations = 0;
+  KSPGetConvergedReason(ksp_, &reason);
+  KSPGetIterationNumber(ksp_, &iterations);
+  KSPGetResidualNorm(ksp_, &report.residual_norm);
+  report.iterations = static_cast<int>(iterations);
+  if (solve_code == 0 && reason > 0) {
+    const PetscScalar* x = nullptr;
+    VecGetArrayRead(solution, &x);
+    for (int i = 0; i < owned; ++i) pressure[at(i)] = x[i];
+    VecRestoreArrayRead(solution, &x);
+  }
+  VecDestroy(&rhs);
+  VecDestroy(&solution);
+  MatDestroy(&matrix);
+  if (solve_code != 0) throw std::runtime_error("pressure solver failed with PETSc error " + std::to_string(solve_code));
+  if (reason <= 0)
+    throw std::runtime_error(std::string("pressure solver did not converge: ") + KSPConvergedReasons[reason] +
+                             " after " + std::to_string(report.iterations) + " iterations, residual " +
+                             std::to_string(report.residual_norm));
+  return report;
+}
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,63 @@
+#pragma once
+// PressurePoisson: the pressure Poisson equation of the projection step (METHOD.md
+// §1 step 2, eq 6), assembled as a distributed PETSc matrix and solved with a KSP
+// whose options carry the prefix -ppe_ (default: CG with hypre BoomerAMG, warm
+// started from the previous pressure).
+//
+// Row of a particle i inside the liquid (the Laplacian with the factor 2):
+//   sum_j a_ij (P_i - P_j) = S_i - sum_w 2 Z2 (dP/dn)_w (r_iw + d2),
+//   a_ij = 2 V_ij (x_ij · grad_i W_ij) / (r^2 + eta^2),   V_ij = (m_i + m_j) / (rho_i + rho_j).
+// The walls' share is known (Neumann wall pressure, see particle_terms.hpp) and moves
+// to the right-hand side. V_ij is the pair's mean volume rather than V_j, so that
+// a_ij = a_ji and the matrix is symmetric; on a uniform lattice both are the same.
+// The rows are multiplied by -1: a_ij <= 0, so the matrix is then an M-matrix,
+// symmetric positive definite wherever every cluster of particles reaches a free
+// surface — which suits CG and algebraic multigrid.
+// Free-surface particles (rho* < beta rho0) have the Dirichlet value P = 0: an
+// identity row, and their columns are left out of the other rows (value 0 moved to
+// the right-hand side), which keeps the matrix symmetric.
+#include <mpi.h>
+#include <petscksp.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "sph_solver/isph/particle_terms.hpp"
+
+namespace tankfsi::sph {
+
+struct PpeSolveReport {
+  int iterations = 0;
+  double residual_norm = 0.0;  ///< the KSP's final residual norm
+};
+
+class PressurePoisson {
+ public:
+  /// `case_options`: PETSc options from the case file (fluid.ppe.solver_options), e.g.
+  /// "-ppe_ksp_rtol 1e-10"; each is applied unless the command line gave it too.
+  PressurePoisson(MPI_Comm comm, const std::string& case_options);
+  ~PressurePoisson();
+  PressurePoisson(const PressurePoisson&) = delete;
+  PressurePoisson& operator=(const PressurePoisson&) = delete;
+
+  /// Solves for the owned particles' pressure; `pressure` holds the warm start on
+  /// entry (owned rows). `global_index`, `density`, `mass`, `free_surface` cover owned
+  /// and ghost particles; `source` the owned ones (S_i with the wall share already
+  /// subtracted). Throws std::runtime_error when the solver does not converge.
+  PpeSolveReport solve(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
+                       std::span<const std::int64_t> global_index, std::span<const unsigned char> free_surface,
+                       std::span<const double> source, std::span<double> pressure);
+
+ private:
+  MPI_Comm comm_;
+  KSP ksp_ = nullptr;
+  int solved_size_ = -1;  ///< local rows of the last solve
+};
+
+/// Applies "-name value -flag ..." option text, each option unless already set
+/// (so the command line, read first, wins). Throws std::invalid_argument on text
+/// that does not start with an option name.
+void apply_default_petsc_options(const std::string& options);
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,119 @@
+#include "sph_solver/isph/wall_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "sph_solver/walls/closest_point.hpp"
+#include "sph_solver/walls/mean_curvature.hpp"
+
+namespace tankfsi::sph {
+namespace {
+
+/// Normals closer than this (cos of ~37°) belong to the same wall.
+constexpr double same_wall_cosine = 0.8;
+/// Curvature the kernel resolves: |H| × support below this.
+constexpr double resolvable_curvature = 0.5;
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+/// Scales the tables for a wall of mean curvature H (see the header): Z_k (1 - 2 H d_k).
+WallKernelValues curved(WallKernelValues v, double mean_curvature) {
+  const auto factor = [mean_curvature](double depth) { return std::max(0.0, 1.0 - 2.0 * mean_curvature * depth); };
+  v.z0 *= factor(v.depth0);
+  v.z1 *= factor(v.depth1);
+  v.z2 *= factor(v.depth2);
+  v.z3 *= factor(v.depth1);
+  return v;
+}
+
+Eigen::Vector3d interpolate(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& values, int t,
+                            const Eigen::Vector3d& w) {
+  const auto& tri = mesh.triangles()[at(t)];
+  return w[0] * values[at(tri[0])] + w[1] * values[at(tri[1])] + w[2] * values[at(tri[2])];
+}
+
+}  // namespace
+
+WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& kernel)
+    : mesh_(std::make_unique<TriangleMesh>(std::move(mesh))),
+      index_(*mesh_),
+      table_(kernel, model.spacing),
+      support_radius_(kernel.support_radius()),
+      dimension_(model.dimension),
+      velocities_(mesh_->vertex_count(), Eigen::Vector3d::Zero()),
+      accelerations_(mesh_->vertex_count(), Eigen::Vector3d::Zero()) {
+  update_curvature();
+}
+
+void WallModel::move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities,
+                     std::span<const Eigen::Vector3d> accelerations) {
+  if (velocities.size() != mesh_->vertex_count() || accelerations.size() != mesh_->vertex_count())
+    throw std::invalid_argument("WallModel::move: one velocity and one acceleration per vertex are needed");
+  mesh_->move_vertices(positions);
+  index_.refit();
+  velocities_.assign(velocities.begin(), velocities.end());
+  accelerations_.assign(accelerations.begin(), accelerations.end());
+  update_curvature();
+}
+
+void WallModel::update_curvature() {
+  compute_vertex_mean_curvature(*mesh_, curvature_);
+  for (double& h : curvature_)
+    if (!(std::abs(h) * support_radius_ <= resolvable_curvature)) h = 0.0;
+}
+
+WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension) {
+  const TriangleMesh& mesh = walls.mesh();
+  const double cutoff = walls.table().cutoff();
+  const double crossing_tolerance = 0.5 * walls.table().spacing();
+  WallContacts result;
+  result.offsets.reserve(positions.size() + 1);
+  std::vector<WallHit> hits;
+  for (const Eigen::Vector3d& x : positions) {
+    hits.clear();
+    walls.index().within(x, cutoff, [&hits](const WallHit& hit) { hits.push_back(hit); });
+    std::sort(hits.begin(), hits.end(), [](const WallHit& a, const WallHit& b) {
+      return a.closest.squared_distance < b.closest.squared_distance ||
+             (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);
+    });
+    const auto first_contact = result.contacts.size();
+    for (const WallHit& hit : hits) {
+      Eigen::Vector3d normal = mesh.face_normals()[at(hit.triangle)];
+      if (dimension == 2) {
+        // The front and back of a 2D section's thin walls are not walls of the plane.
+        if (std::abs(normal.z()) > 0.5) continue;
+        normal.z() = 0.0;
+        normal.normalize();
+      }
+      if (normal.squaredNorm() == 0.0) continue;  // degenerate triangle
+      const double height = (x - hit.closest.point).dot(normal);
+      if (height < -crossing_tolerance) continue;  // behind this wall's plane
+      const bool same_wall = std::any_of(result.contacts.begin() + static_cast<std::ptrdiff_t>(first_contact),
+                                         result.contacts.end(), [&normal](const WallContact& c) {
+                                           return c.normal.dot(normal) > same_wall_cosine;
+                                         });
+      if (same_wall) continue;
+      WallContact contact;
+      contact.triangle = hit.triangle;
+      contact.barycentric = hit.closest.barycentric;
+      contact.normal = normal;
+      contact.distance = height <= 0.0 ? 0.0 : std::sqrt(hit.closest.squared_distance);
+      const double h = interpolate_vertex_values(mesh, walls.curvature(), hit.triangle, contact.barycentric);
+      contact.values = curved(walls.table().at(contact.distance), h);
+      contact.velocity = interpolate(mesh, walls.vertex_velocities(), hit.triangle, contact.barycentric);
+      contact.acceleration = interpolate(mesh, walls.vertex_accelerations(), hit.triangle, contact.barycentric);
+      result.contacts.push_back(contact);
+    }
+    result.offsets.push_back(static_cast<int>(result.contacts.size()));
+  }
+  return result;
+}
+
+void add_wall_force(const TriangleMesh& mesh, const WallContact& contact, const Eigen::Vector3d& force,
+                    std::vector<Eigen::Vector3d>& vertex_forces) {
+  const auto& tri = mesh.triangles()[at(contact.triangle)];
+  for (int k = 0; k < 3; ++k) vertex_forces[at(tri[at(k)])] += contact.barycentric[k] * force;
+}
+
+}  // namespace tankfsi::sph

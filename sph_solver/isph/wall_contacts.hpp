@@ -1,0 +1,108 @@
+#pragma once
+// Walls as the particles see them (METHOD.md §2, eqs 10-15): the wall mesh with its
+// spatial index, curvature and motion (WallModel), and each particle's wall
+// contacts — the walls within its kernel support, with the table values that stand
+// for the virtual particles behind them (WallContacts).
+//
+// Several walls: a particle near a corner sees each wall of the corner as its own
+// half-space. Triangles within the support are visited nearest first; a triangle
+// becomes a new contact unless its plane is nearly parallel (normals within ~37°,
+// cos > 0.8) to a contact already taken — the same flat or gently curved wall, whose
+// nearest triangle already stands for it. A triangle whose plane the particle lies
+// behind (the far side of a thin plate) is not a contact. The half-spaces of two
+// walls meeting at a corner overlap behind the corner; that overlap is counted
+// twice (a known limitation of per-wall tables; its effect on the hydrostatic test
+// is measured in tests/validation).
+//
+// Distance (eq 15): the true point-triangle distance to the nearest triangle of the
+// wall, the normal that of its plane. A particle that has crossed a wall by less
+// than L0/2 is treated as touching it (distance 0), so the strongest wall terms push
+// it back; one further behind is not in contact (it has left through the wall).
+//
+// Curvature: the flat-wall tables count virtual particles in layers parallel to the
+// wall. Behind a curved wall a layer at depth s has the area of the surface times
+// (1 - 2 H s) to first order (H the mean curvature, positive where the wall bulges
+// towards the fluid; the same factor for the curve of a 2D section, where H = κ/2).
+// Each Z_k is therefore scaled by (1 - 2 H d_k), d_k its representative depth.
+// Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
+// (sharp edges and corners, which the per-wall contacts already handle) H is set to 0.
+#include <Eigen/Core>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "sph_solver/isph/fluid_model.hpp"
+#include "sph_solver/kernels/kernel.hpp"
+#include "sph_solver/walls/triangle_index.hpp"
+#include "sph_solver/walls/triangle_mesh.hpp"
+#include "sph_solver/walls/wall_kernel_table.hpp"
+
+namespace tankfsi::sph {
+
+class WallModel {
+ public:
+  /// The mesh's normals must point to the fluid. Walls start at rest.
+  WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& kernel);
+  WallModel(const WallModel&) = delete;
+  WallModel& operator=(const WallModel&) = delete;
+
+  [[nodiscard]] const TriangleMesh& mesh() const { return *mesh_; }
+  [[nodiscard]] const TriangleIndex& index() const { return index_; }
+  [[nodiscard]] const WallKernelTable& table() const { return table_; }
+  /// Mean curvature per vertex, sharp features zeroed (see above).
+  [[nodiscard]] const std::vector<double>& curvature() const { return curvature_; }
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_velocities() const { return velocities_; }
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_accelerations() const { return accelerations_; }
+
+  /// Moves the wall (a deforming structure): positions, velocities and
+  /// accelerations per vertex, in the tank-base frame. Updates the index and curvature.
+  void move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities,
+            std::span<const Eigen::Vector3d> accelerations);
+
+ private:
+  void update_curvature();
+
+  std::unique_ptr<TriangleMesh> mesh_;  ///< on the heap: the index points to it
+  TriangleIndex index_;
+  WallKernelTable table_;
+  double support_radius_;
+  int dimension_;
+  std::vector<double> curvature_;
+  std::vector<Eigen::Vector3d> velocities_;
+  std::vector<Eigen::Vector3d> accelerations_;
+};
+
+/// One wall seen by one particle.
+struct WallContact {
+  int triangle = -1;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();  ///< of the closest point
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();       ///< unit, towards the fluid
+  double distance = 0.0;                                  ///< r_iw >= 0
+  WallKernelValues values;                                ///< curvature-corrected
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();     ///< wall velocity at the closest point
+  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
+};
+
+/// The contacts of particles 0 .. n-1 in CSR form.
+struct WallContacts {
+  std::vector<int> offsets{0};
+  std::vector<WallContact> contacts;
+
+  [[nodiscard]] std::span<const WallContact> of(int i) const {
+    const auto begin = static_cast<std::size_t>(offsets[static_cast<std::size_t>(i)]);
+    const auto end = static_cast<std::size_t>(offsets[static_cast<std::size_t>(i) + 1]);
+    return std::span<const WallContact>(contacts).subspan(begin, end - begin);
+  }
+};
+
+/// The wall contacts of the given particles (METHOD.md eq 15 and the rules above).
+[[nodiscard]] WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
+                                              int dimension);
+
+/// Adds the force `force` that particle i exerts on the wall through `contact` to
+/// the contact triangle's vertices, shared by the barycentric weights.
+void add_wall_force(const TriangleMesh& mesh, const WallContact& contact, const Eigen::Vector3d& force,
+                    std::vector<Eigen::Vector3d>& vertex_forces);
+
+}  // namespace tankfsi::sph

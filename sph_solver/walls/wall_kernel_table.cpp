@@ -1,0 +1,114 @@
+#include "sph_solver/walls/wall_kernel_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace tankfsi::sph {
+
+namespace {
+
+void require_spacing(const Kernel& kernel, double spacing) {
+  if (!std::isfinite(spacing) || spacing <= 0.0) {
+    throw std::invalid_argument("wall kernel table: spacing must be positive and finite");
+  }
+  if (kernel.support_radius() > WallKernelTable::max_support_in_spacings * spacing) {
+    throw std::invalid_argument("wall kernel table: the kernel support spans more than " +
+                                std::to_string(static_cast<int>(WallKernelTable::max_support_in_spacings)) +
+                                " lattice spacings");
+  }
+}
+
+}  // namespace
+
+WallKernelTable::WallKernelTable(const Kernel& kernel, double spacing, int intervals)
+    : cutoff_(kernel.support_radius()), spacing_(spacing) {
+  require_spacing(kernel, spacing);
+  if (intervals < 1) throw std::invalid_argument("wall kernel table: at least one interval is needed");
+  inverse_step_ = intervals / cutoff_;
+  nodes_.reserve(static_cast<std::size_t>(intervals) + 1);
+  // The last node, at the cutoff, sums to zero: every virtual particle is outside the support.
+  for (int k = 0; k <= intervals; ++k) nodes_.push_back(sum_lattice(kernel, spacing, cutoff_ * k / intervals));
+}
+
+WallKernelValues WallKernelTable::at(double distance) const {
+  if (std::isnan(distance)) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan, nan, nan, nan, nan};
+  }
+  if (distance >= cutoff_) return {};
+  // Clamp a crossed particle to the wall surface; d < cutoff keeps position < intervals.
+  const double position = std::max(distance, 0.0) * inverse_step_;
+  const std::size_t index = std::min(static_cast<std::size_t>(position), nodes_.size() - 2);
+  const double t = position - static_cast<double>(index);
+  const Node& below = nodes_[index];
+  const Node& above = nodes_[index + 1];
+  Node node;
+  for (std::size_t k = 0; k < 3; ++k) {
+    node.z[k] = (1.0 - t) * below.z[k] + t * above.z[k];
+    node.moment[k] = (1.0 - t) * below.moment[k] + t * above.moment[k];
+  }
+  node.tangential = (1.0 - t) * below.tangential + t * above.tangential;
+  return values_of(node);
+}
+
+WallKernelValues WallKernelTable::direct_sum(const Kernel& kernel, double spacing, double distance) {
+  require_spacing(kernel, spacing);
+  if (!(distance >= 0.0)) throw std::invalid_argument("wall kernel table: distance must be >= 0 (and not NaN)");
+  return values_of(sum_lattice(kernel, spacing, distance));
+}
+
+// Layer by layer from the surface down, visiting only the lattice sites inside the
+// support: the layer at depth s lies at normal distance z = d + s from the particle,
+// and its sites within reach form a disc (3D) or a segment (2D) of lateral radius
+// sqrt(R^2 - z^2). At d = 0 that is about (2 pi / 3)(R / L0)^3 sites in 3D: 55 for
+// the quartic spline at h = 1.2 L0 (R = 3 L0), and a table of 400 intervals builds in
+// about 0.2 ms.
+WallKernelTable::Node WallKernelTable::sum_lattice(const Kernel& kernel, double spacing, double distance) {
+  const double support = kernel.support_radius();
+  const double support_squared = support * support;
+  const double h = kernel.smoothing_length();
+  const double eta_squared = 0.01 * h * h;
+  const bool planar = kernel.dimension() == 2;
+  Node node;
+  for (int layer = 0;; ++layer) {
+    const double depth = (layer + 0.5) * spacing;
+    const double height = distance + depth;  // x_ij . n
+    if (height >= support) break;
+    // One site more than the disc needs, against rounding; the radius test below decides.
+    const int reach = static_cast<int>(std::sqrt(support_squared - height * height) / spacing) + 1;
+    const int reach_b = planar ? 0 : reach;
+    for (int a = -reach; a <= reach; ++a) {
+      for (int b = -reach_b; b <= reach_b; ++b) {
+        const double r_squared = height * height + spacing * spacing * (a * a + b * b);
+        if (r_squared >= support_squared) continue;
+        const double r = std::sqrt(r_squared);  // > 0: height >= L0/2
+        const double slope = kernel.derivative(r);
+        const std::array<double, 3> weight{kernel.value(r), slope * height / r,
+                                           r * slope / (r_squared + eta_squared)};
+        for (std::size_t k = 0; k < 3; ++k) {
+          node.z[k] += weight[k];
+          node.moment[k] += weight[k] * depth;
+        }
+        node.tangential -= slope * spacing * spacing * (a * a + b * b) / r / (planar ? 1.0 : 2.0);
+      }
+    }
+  }
+  const double volume = std::pow(spacing, kernel.dimension());
+  for (std::size_t k = 0; k < 3; ++k) {
+    node.z[k] *= volume;
+    node.moment[k] *= volume;
+  }
+  node.tangential *= volume;
+  return node;
+}
+
+WallKernelValues WallKernelTable::values_of(const Node& node) {
+  const auto depth = [&node](std::size_t k) { return node.z[k] != 0.0 ? node.moment[k] / node.z[k] : 0.0; };
+  return {node.z[0], node.z[1], node.z[2], depth(0), depth(1), depth(2), node.tangential};
+}
+
+}  // namespace tankfsi::sph
