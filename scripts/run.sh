@@ -13,6 +13,14 @@ case_file="$case_dir/case.yaml"
 [[ -f "$case_file" ]] || { echo "run.sh: no case file $case_file" >&2; exit 2; }
 run_dir="runs/$(basename "$case_dir")-$(date +%Y%m%d-%H%M%S)"
 
+# A fluid-only case (no structure section) runs sph_solver alone, on all cores.
+if ! grep -q '^structure:' "$case_file"; then
+  mpirun -np "${TANKFSI_RANKS:-$jobs}" build/bin/sph_solver "$case_file" --output "$run_dir"
+  /usr/bin/python3 scripts/post/plot_probes.py "$run_dir"
+  echo "run.sh: results in $run_dir (open fluid.xdmf and walls.xdmf in ParaView)"
+  exit 0
+fi
+
 missing=()
 for program in sph_solver fem_solver; do
   [[ -x build/bin/$program ]] || missing+=("$program")

@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Fluid benchmark: runs sph_solver on benchmark cases and writes their figures.
+
+Usage: fluid_bench.py --solver build/bin/sph_solver --output bench/fluid [--quick]
+
+For each case and rank count it records: particles, steps, particle-steps per
+second, wall seconds per simulated second, the share of each stage (neighbours,
+ppe_assemble, ppe_solve, predictor = viscosity and walls at x^n, corrector),
+mean and max PPE iterations, and peak resident memory per particle (the largest
+rank's peak resident set times the rank count, over the particles).
+Figures go to OUTPUT/fluid_figures.json and a table to OUTPUT/fluid_figures.md.
+Nothing is asserted: a benchmark reports, the reader judges.
+
+Full set (a workstation or a cluster node; tens of minutes to hours):
+  2D dam break at L0 = 0.01 m and 0.005 m for 2 s; 3D cylindrical tank at rest at
+  L0 chosen for >= 100k particles; each on 1 and 2 ranks.
+--quick (what a 2-core machine does in minutes): 2D dam break at L0 = 0.02 m for
+  0.3 s on 1 and 2 ranks.
+"""
+import argparse
+import json
+import pathlib
+import resource
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+FULL = [
+    ("dam_break_2d", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.01", "end_time=2.0"]),
+    ("dam_break_2d_fine", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.005", "end_time=2.0"]),
+    ("cylinder_3d_rest", "cases/hydrostatic_3d/case.yaml", ["fluid.spacing=0.04", "end_time=0.5"]),
+]
+QUICK = [("dam_break_2d_quick", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.02", "end_time=0.3"])]
+
+
+def run(solver, case, settings, ranks, folder):
+    command = ["mpirun", "-np", str(ranks), "--oversubscribe", solver, str(ROOT / case), "--output", str(folder)]
+    for s in settings + ["output.field_interval=1000"]:
+        command += ["--set", s]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    start = time.monotonic()
+    result = subprocess.run(command, capture_output=True, text=True)
+    elapsed = time.monotonic() - start
+    if result.returncode != 0:
+        sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}")
+    peak_kib = max(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, before)
+    summary = json.loads((folder / "summary.json").read_text())
+    fluid = summary["fluid"]
+    stages = summary["programs"]["sph_solver"]["stages"]
+    total = sum(s["seconds"] for s in stages.values())
+    return {
+        "ranks": ranks,
+        "particles": fluid["particles"],
+        "steps": fluid["steps"],
+        "simulated_s": fluid["end_time_s"],
+        "wall_s": elapsed,
+        "particle_steps_per_s": fluid["particle_steps_per_second"],
+        "wall_s_per_simulated_s": fluid["wall_seconds_per_simulated_second"],
+        "ppe_iterations_mean": fluid["ppe_iterations"]["mean"],
+        "ppe_iterations_max": fluid["ppe_iterations"]["max"],
+        "stage_share": {name: s["seconds"] / total for name, s in stages.items()},
+        "peak_memory_per_particle_kib": peak_kib * ranks / max(fluid["particles"], 1),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--solver", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    out = pathlib.Path(args.output)
+    out.mkdir(parents=True, exist_ok=True)
+    figures = {}
+    with tempfile.TemporaryDirectory() as scratch:
+        for name, case, settings in QUICK if args.quick else FULL:
+            figures[name] = []
+            for ranks in (1, 2):
+                folder = pathlib.Path(scratch) / f"{name}-{ranks}"
+                figures[name].append(run(args.solver, case, settings, ranks, folder))
+                print(name, figures[name][-1], flush=True)
+    (out / "fluid_figures.json").write_text(json.dumps(figures, indent=2))
+    lines = ["| case | ranks | particles | steps | particle-steps/s | wall s / sim s | PPE it. mean/max | "
+             "neighbours | ppe_assemble | ppe_solve | predictor | corrector | KiB/particle |",
+             "|" + "---|" * 13]
+    for name, rows in figures.items():
+        for r in rows:
+            share = r["stage_share"]
+            lines.append(f"| {name} | {r['ranks']} | {r['particles']} | {r['steps']} | {r['particle_steps_per_s']:.3g} | "
+                         f"{r['wall_s_per_simulated_s']:.3g} | {r['ppe_iterations_mean']:.1f}/{r['ppe_iterations_max']} | "
+                         + " | ".join(f"{100 * share.get(s, 0):.0f} %" for s in
+                                      ("neighbours", "ppe_assemble", "ppe_solve", "predictor", "corrector"))
+                         + f" | {r['peak_memory_per_particle_kib']:.2f} |")
+    (out / "fluid_figures.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
