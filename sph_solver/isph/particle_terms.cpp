@@ -57,6 +57,24 @@ double wall_pressure_gradient(const FluidModel& model, const WallContact& contac
   return model.density / dt * (v_star - contact.velocity).dot(contact.normal);
 }
 
+double laplacian_weight(const Kernel& kernel, const FluidModel& model, double r, double volume) {
+  return 2.0 * volume * r * kernel.derivative(r) / (r * r + model.eta_squared());
+}
+
+std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const double> mass,
+                                       std::span<const double> density, std::span<const double> pressure) {
+  std::vector<double> laplacian(at(n.owned));
+  for (int i = 0; i < n.owned; ++i) {
+    double sum = 0.0;
+    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d&, double r) {
+      const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
+      sum += laplacian_weight(n.kernel, n.model, r, volume) * (pressure[at(i)] - pressure[at(j)]);
+    });
+    laplacian[at(i)] = sum;
+  }
+  return laplacian;
+}
+
 std::vector<double> kernel_density(const Neighbourhood& n, std::span<const double> mass) {
   std::vector<double> density(at(n.owned));
   const double self_weight = n.kernel.value(0.0);

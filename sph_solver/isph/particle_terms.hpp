@@ -48,6 +48,16 @@ struct Neighbourhood {
 [[nodiscard]] std::vector<double> position_divergence(const Neighbourhood& n, std::span<const double> mass,
                                                       std::span<const double> density);
 
+/// The weight a_ij = 2 V (x_ij · grad_i W_ij) / (r^2 + eta^2) of the Laplacian
+/// (eq 6, with the factor 2): sum_j a_ij (f_i - f_j) approximates lap f.
+[[nodiscard]] double laplacian_weight(const Kernel& kernel, const FluidModel& model, double r, double volume);
+
+/// (lap P)_i = sum_j a_ij (P_i - P_j), V_ij = (m_i + m_j)/(rho_i + rho_j): the PPE's
+/// operator on the liquid (no wall share), for checks and diagnostics.
+[[nodiscard]] std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const double> mass,
+                                                     std::span<const double> density,
+                                                     std::span<const double> pressure);
+
 /// Morris viscous acceleration (mu/rho lap v)_i (eq 5) with the wall term
 /// 2 mu / rho_i Z2 (v_i - v_w(d2)) (eq 14). `wall_force` gets -m_i times the wall
 /// part per vertex.

@@ -67,7 +67,6 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
                                       std::span<const unsigned char> free_surface, std::span<const double> source,
                                       std::span<double> pressure) {
   const int owned = n.owned;
-  const double eta2 = n.model.eta_squared();
   const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
   std::vector<Row> rows(at(owned));
   std::vector<PetscInt> diagonal_nonzeros(at(owned), 1);
@@ -82,7 +81,7 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
     for (const int j : n.neighbours.neighbours_of(i)) {
       const double r = (x_i - n.position[at(j)]).norm();
       const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
-      const double a = 2.0 * volume * r * n.kernel.derivative(r) / (r * r + eta2);
+      const double a = laplacian_weight(n.kernel, n.model, r, volume);
       diagonal -= a;
       if (free_surface[at(j)] != 0) continue;
       row.columns.push_back(static_cast<PetscInt>(global_index[at(j)]));
