@@ -16,12 +16,15 @@
 #include "sph_solver/walls/gmsh_reader.hpp"
 #include "sph_solver/walls/mesh_topology.hpp"
 #include "support/scratch_folder.hpp"
+#include "support/text_files.hpp"
 
 using namespace tankfsi::sph;
 using Catch::Matchers::Contains;
 using Eigen::Vector3d;
 using tankfsi::ConfigError;
 using tankfsi::testing::ScratchFolder;
+using tankfsi::testing::with_line;
+using tankfsi::testing::write_text;
 namespace fs = std::filesystem;
 
 namespace {
@@ -89,19 +92,6 @@ $Elements
 $EndElements
 )";
 
-fs::path write(const ScratchFolder& folder, const std::string& name, const std::string& content) {
-  const fs::path file = folder.file(name);
-  std::ofstream(file, std::ios::binary) << content;
-  return file;
-}
-
-// Replaces line `number` (1-based) of a text.
-std::string with_line(const std::string& text, int number, const std::string& replacement) {
-  std::istringstream in(text);
-  std::string line, out;
-  for (int i = 1; std::getline(in, line); ++i) out += (i == number ? replacement : line) + "\n";
-  return out;
-}
 
 // 1-based number of the line that equals `line`.
 int line_of(const std::string& text, const std::string& line) {
@@ -125,7 +115,7 @@ std::vector<std::int64_t> node_tags(const GmshSurface& surface, int t) {
 
 TEST_CASE("Gmsh: triangles and quadrangles with physical groups", "[geometry]") {
   ScratchFolder folder;
-  const GmshSurface surface = read_gmsh_surface(write(folder, "tank.msh", good_msh));
+  const GmshSurface surface = read_gmsh_surface(write_text(folder, "tank.msh", good_msh));
   REQUIRE(surface.mesh.triangle_count() == 6);
   CHECK(surface.mesh.vertex_count() == 8);
   CHECK(surface.node_tag == std::vector<std::int64_t>{1, 2, 3, 4, 5, 6, 7, 8});
@@ -150,7 +140,7 @@ TEST_CASE("Gmsh: triangles and quadrangles with physical groups", "[geometry]") 
 
 TEST_CASE("Gmsh: selection by physical group name", "[geometry]") {
   ScratchFolder folder;
-  const fs::path file = write(folder, "tank.msh", good_msh);
+  const fs::path file = write_text(folder, "tank.msh", good_msh);
   const GmshSurface wall = read_gmsh_surface(file, {"tank wall"});
   REQUIRE(wall.mesh.triangle_count() == 4);
   CHECK(wall.physical_tag == std::vector<int>{2, 2, 2, 2});  // surface 3 under its selected group
@@ -171,7 +161,7 @@ TEST_CASE("Gmsh: Windows line ends and skipped sections", "[geometry]") {
   std::string crlf;
   for (const char c : good_msh) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   crlf += "$Comments\r\nanything at all\r\n$EndComments\r\n";
-  const GmshSurface surface = read_gmsh_surface(write(folder, "crlf.msh", crlf));
+  const GmshSurface surface = read_gmsh_surface(write_text(folder, "crlf.msh", crlf));
   CHECK(surface.mesh.triangle_count() == 6);
   CHECK(surface.physical_name(2) == "tank wall");
 }
@@ -179,7 +169,7 @@ TEST_CASE("Gmsh: Windows line ends and skipped sections", "[geometry]") {
 TEST_CASE("Gmsh: broken files raise ConfigError with file and line", "[geometry]") {
   ScratchFolder folder;
   const auto read = [&](const std::string& name, const std::string& text) {
-    return read_gmsh_surface(write(folder, name, text));
+    return read_gmsh_surface(write_text(folder, name, text));
   };
 
   SECTION("version 2.2 and binary files are refused with the way out") {

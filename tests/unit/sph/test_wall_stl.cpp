@@ -22,12 +22,15 @@
 #include "sph_solver/walls/stl_reader.hpp"
 #include "sph_solver/walls/triangle_mesh.hpp"
 #include "support/scratch_folder.hpp"
+#include "support/text_files.hpp"
 
 using namespace tankfsi::sph;
 using Catch::Matchers::Contains;
 using Eigen::Vector3d;
 using tankfsi::ConfigError;
 using tankfsi::testing::ScratchFolder;
+using tankfsi::testing::with_line;
+using tankfsi::testing::write_text;
 namespace fs = std::filesystem;
 
 namespace {
@@ -71,19 +74,6 @@ std::string binary_stl(const TriangleMesh& mesh) {
   return out;
 }
 
-fs::path write(const ScratchFolder& folder, const std::string& name, const std::string& content) {
-  const fs::path file = folder.file(name);
-  std::ofstream(file, std::ios::binary) << content;
-  return file;
-}
-
-// Replaces line `number` (1-based) of a text.
-std::string with_line(const std::string& text, int number, const std::string& replacement) {
-  std::istringstream in(text);
-  std::string line, out;
-  for (int i = 1; std::getline(in, line); ++i) out += (i == number ? replacement : line) + "\n";
-  return out;
-}
 
 }  // namespace
 
@@ -91,8 +81,8 @@ TEST_CASE("STL: ASCII and binary files of a cube read back to the same merged me
   ScratchFolder folder;
   const TriangleMesh cube = test_cube();
   // Extension deliberately wrong for the binary one: detection is by content.
-  const TriangleMesh from_ascii = read_stl(write(folder, "cube_ascii.stl", ascii_stl(cube)));
-  const TriangleMesh from_binary = read_stl(write(folder, "cube_binary.txt", binary_stl(cube)));
+  const TriangleMesh from_ascii = read_stl(write_text(folder, "cube_ascii.stl", ascii_stl(cube)));
+  const TriangleMesh from_binary = read_stl(write_text(folder, "cube_binary.txt", binary_stl(cube)));
   for (const TriangleMesh* mesh : {&from_ascii, &from_binary}) {
     REQUIRE(mesh->vertex_count() == 8);
     REQUIRE(mesh->triangle_count() == 12);
@@ -112,7 +102,7 @@ TEST_CASE("STL: ASCII details (case, several solids, -0, facet normals ignored)"
       "SOLID a\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
       "endsolid a\nsolid b\nfacet normal 9 9 9\n outer loop\n vertex -0 0 0\n vertex 0 1e0 +0\n vertex 0 0 1\n"
       " endloop\n endfacet\nendsolid\n";
-  const TriangleMesh mesh = read_stl(write(folder, "two.stl", text));
+  const TriangleMesh mesh = read_stl(write_text(folder, "two.stl", text));
   CHECK(mesh.triangle_count() == 2);
   CHECK(mesh.vertex_count() == 4);  // (0,0,0) = (-0,0,0) and (0,1,0) shared
 }
@@ -124,13 +114,13 @@ TEST_CASE("STL: broken files raise ConfigError with their location", "[wall_geom
   const std::string binary = binary_stl(cube);
 
   SECTION("truncated binary: byte offset and triangle") {
-    const fs::path file = write(folder, "cut.stl", binary.substr(0, binary.size() - 30));
+    const fs::path file = write_text(folder, "cut.stl", binary.substr(0, binary.size() - 30));
     CHECK_THROWS_AS(read_stl(file), ConfigError);
     CHECK_THROWS_WITH(read_stl(file), Contains(file.string()) && Contains("truncated binary STL") &&
                                           Contains("byte offset 654") && Contains("inside triangle 11"));
   }
   SECTION("binary with extra bytes") {
-    const fs::path file = write(folder, "long.stl", binary + "xx");
+    const fs::path file = write_text(folder, "long.stl", binary + "xx");
     CHECK_THROWS_WITH(read_stl(file), Contains("2 unexpected bytes") && Contains("byte offset 684"));
   }
   SECTION("NaN coordinate in binary: triangle and byte offset") {
@@ -140,33 +130,33 @@ TEST_CASE("STL: broken files raise ConfigError with their location", "[wall_geom
     std::string bytes;
     put_u32(bytes, nan);
     bad.replace(offset, 4, bytes);
-    CHECK_THROWS_WITH(read_stl(write(folder, "nan.stl", bad)),
+    CHECK_THROWS_WITH(read_stl(write_text(folder, "nan.stl", bad)),
                       Contains("triangle 5, vertex 1") && Contains("byte offset " + std::to_string(offset)));
   }
   SECTION("zero triangles") {
     std::string empty = binary.substr(0, 80);
     put_u32(empty, 0);
-    CHECK_THROWS_WITH(read_stl(write(folder, "empty.stl", empty)), Contains("zero triangles"));
-    CHECK_THROWS_WITH(read_stl(write(folder, "empty_ascii.stl", "solid x\nendsolid x\n")),
+    CHECK_THROWS_WITH(read_stl(write_text(folder, "empty.stl", empty)), Contains("zero triangles"));
+    CHECK_THROWS_WITH(read_stl(write_text(folder, "empty_ascii.stl", "solid x\nendsolid x\n")),
                       Contains("empty_ascii.stl:2") && Contains("zero triangles"));
   }
   SECTION("bad ASCII keyword: file and line") {
-    const fs::path file = write(folder, "keyword.stl", with_line(ascii, 10, "    outer lop"));
+    const fs::path file = write_text(folder, "keyword.stl", with_line(ascii, 10, "    outer lop"));
     CHECK_THROWS_WITH(read_stl(file), Contains(file.string() + ":10:") && Contains("expected 'loop', found 'lop'"));
   }
   SECTION("NaN and non-numeric ASCII coordinates: file and line") {
-    const fs::path nan = write(folder, "nan_ascii.stl", with_line(ascii, 4, "      vertex 0 nan 1"));
+    const fs::path nan = write_text(folder, "nan_ascii.stl", with_line(ascii, 4, "      vertex 0 nan 1"));
     CHECK_THROWS_WITH(read_stl(nan), Contains(nan.string() + ":4:") && Contains("non-finite a vertex coordinate"));
-    const fs::path word = write(folder, "word.stl", with_line(ascii, 5, "      vertex 0 1 one"));
+    const fs::path word = write_text(folder, "word.stl", with_line(ascii, 5, "      vertex 0 1 one"));
     CHECK_THROWS_WITH(read_stl(word), Contains(word.string() + ":5:") && Contains("found 'one'"));
   }
   SECTION("ASCII cut short: unexpected end of file at the last line") {
     const std::string cut = ascii.substr(0, ascii.find("    endloop"));  // ends after line 6
-    CHECK_THROWS_WITH(read_stl(write(folder, "short.stl", cut)),
+    CHECK_THROWS_WITH(read_stl(write_text(folder, "short.stl", cut)),
                       Contains("short.stl:6:") && Contains("unexpected end of file, expected 'endloop'"));
   }
   SECTION("neither ASCII nor binary, and missing files") {
-    CHECK_THROWS_WITH(read_stl(write(folder, "tiny.stl", "hello")), Contains("not an STL file"));
+    CHECK_THROWS_WITH(read_stl(write_text(folder, "tiny.stl", "hello")), Contains("not an STL file"));
     CHECK_THROWS_AS(read_stl(folder.file("missing.stl")), ConfigError);
     CHECK_THROWS_WITH(read_stl(folder.file("missing.stl")), Contains("cannot read STL file"));
   }
