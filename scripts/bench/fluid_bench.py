@@ -20,7 +20,6 @@ Full set (a workstation or a cluster node; tens of minutes to hours):
 import argparse
 import json
 import pathlib
-import resource
 import shlex
 import subprocess
 import sys
@@ -41,13 +40,16 @@ def run(solver, case, settings, ranks, folder):
     command = ["mpirun", "-np", str(ranks), "--oversubscribe", solver, str(ROOT / case), "--output", str(folder)]
     for s in settings + ["output.field_interval=1000"]:
         command += ["--set", s]
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    # RUSAGE_CHILDREN keeps the largest peak of every child so far: measure each run
+    # in a fresh interpreter, whose children are this run's processes only.
+    measure = ("import resource, subprocess, sys; r = subprocess.run(sys.argv[1:]); "
+               "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); sys.exit(r.returncode)")
     start = time.monotonic()
-    result = subprocess.run(command, capture_output=True, text=True)
+    result = subprocess.run([sys.executable, "-c", measure] + command, capture_output=True, text=True)
     elapsed = time.monotonic() - start
     if result.returncode != 0:
         sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}")
-    peak_kib = max(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, before)
+    peak_kib = int(result.stderr.strip().splitlines()[-1])
     summary = json.loads((folder / "summary.json").read_text())
     fluid = summary["fluid"]
     stages = summary["programs"]["sph_solver"]["stages"]

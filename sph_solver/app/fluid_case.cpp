@@ -13,9 +13,12 @@
 namespace tankfsi::sph {
 namespace {
 
-/// Depth of the extruded walls of a 2D section (the paper's tank is 2 cm deep);
-/// it only has to exceed the kernel support, since front and back are open.
-double section_depth(const FluidModel& model) { return 4.0 * model.smoothing_length * 3.0; }
+/// Depth of the extruded walls of a 2D section (the paper's tank is 2 cm deep). The
+/// section's front and back are open, so their edges at z = ±depth/2 must lie
+/// beyond the kernel support of every particle (at z = 0): twice the support each way.
+double section_depth(const FluidModel& model) {
+  return 4.0 * Kernel(model.kernel, model.dimension, model.smoothing_length).support_radius();
+}
 
 Eigen::AlignedBox3d box_from(const ConfigView& config, const std::string& key) {
   const auto v = config.real_vector(key);

@@ -17,8 +17,6 @@
 namespace tankfsi::sph {
 namespace {
 
-std::size_t at(std::size_t i) { return i; }
-
 /// Probe CSV columns; forces of a 2D section are per metre of depth.
 std::vector<std::string> probe_columns(const std::string& quantity) {
   if (quantity == "pressure") return {"pressure_Pa"};
@@ -45,7 +43,8 @@ class Outputs {
         top_(c.domain.max().dot(c.model.up())),
         depth_suffix_(c.model.dimension == 2 ? "_per_m" : ""),
         particles_(context.comm, context.folder->path(), "fluid"),
-        walls_(context.comm, context.folder->path(), "walls") {
+        walls_(context.comm, context.folder->path(), "walls"),
+        probes_(c.probes) {
     if (context.log.rank() == 0) {
       for (const auto& probe : c.probes)
         probe_files_.push_back(std::make_unique<ProbeFile>(context.folder->probes() / (probe.name + ".csv"),
@@ -58,7 +57,6 @@ class Outputs {
                                    "ppe_iterations"},
           c.field_interval);
     }
-    probes_ = c.probes;
   }
 
   void sample(double t, const StepReport& report) {
@@ -85,8 +83,8 @@ class Outputs {
     velocities.reserve(3 * particles.size());
     for (std::size_t i = 0; i < particles.size(); ++i)
       for (int k = 0; k < 3; ++k) {
-        positions.push_back(particles.position[at(i)][k]);
-        velocities.push_back(particles.velocity[at(i)][k]);
+        positions.push_back(particles.position[i][k]);
+        velocities.push_back(particles.velocity[i][k]);
       }
     particles_.write_particles(t, ParticleSnapshot{particles.id, positions,
                                                    {NamedField{"velocity", 3, velocities},
@@ -143,9 +141,9 @@ class Outputs {
   const FluidSolver& solver_;
   double top_;
   std::string depth_suffix_;
-  std::vector<ProbeSpec> probes_;
   FieldSeriesWriter particles_;
   FieldSeriesWriter walls_;
+  std::vector<ProbeSpec> probes_;
   std::vector<std::unique_ptr<ProbeFile>> probe_files_;
   std::unique_ptr<ProbeFile> global_;
   Eigen::Vector3d last_total_force_ = Eigen::Vector3d::Zero();
@@ -162,14 +160,14 @@ struct RunStatistics {
   double particle_steps = 0.0;
   std::map<std::string, long long> limiting;
 
-  void add(const StepReport& r, long long particles, const std::string& limit) {
+  void add(const StepReport& r, const std::string& limit) {
     ++steps;
     min_dt = std::min(min_dt, r.time_step);
     max_dt = std::max(max_dt, r.time_step);
     ppe_iterations += r.ppe_iterations;
     max_ppe_iterations = std::max(max_ppe_iterations, r.ppe_iterations);
     max_density_error = std::max(max_density_error, r.max_density_error);
-    particle_steps += static_cast<double>(particles);
+    particle_steps += static_cast<double>(r.particles);
     ++limiting[limit];
   }
 };
@@ -193,10 +191,10 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   double next_field = c.field_interval;
   const double end = c.end_time;
   Particles last_good = solver.particles();
+  double speed = solver.max_speed();  // then each step's report carries it
   try {
     while (t < end * (1.0 - 1e-12)) {
       const Eigen::Vector3d force = c.model.body_force(motion.acceleration(t));
-      const double speed = solver.max_speed();
       const auto limits = time_step_limits(c.model, c.cfl_number, c.adaptive_time_step ? c.max_time_step : c.fixed_time_step,
                                            speed, force.norm());
       double dt = c.adaptive_time_step ? limits.smallest() : c.fixed_time_step;
@@ -213,7 +211,8 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       last_good = solver.particles();
       last = solver.step(t, dt, motion.acceleration(t + 0.5 * dt));
       t += dt;
-      stats.add(last, solver.global_particle_count(), c.adaptive_time_step ? limits.limiting() : "fixed");
+      speed = last.max_speed;
+      stats.add(last, c.adaptive_time_step ? limits.limiting() : "fixed");
       if (t >= next_probe * (1.0 - 1e-12)) {
         outputs.sample(t, last);
         next_probe += c.probe_interval * std::max(1.0, std::floor((t - next_probe) / c.probe_interval) + 1.0);

@@ -19,11 +19,10 @@ template <std::size_t N, class Field>
 std::array<double, N + 1> kernel_sums(const FluidSolver& solver, const Eigen::Vector3d& x, Field field) {
   std::array<double, N + 1> sums{};
   const Particles& p = solver.particles();
-  const double volume = solver.model().particle_mass() / solver.model().density;
   for (int j = 0; j < p.count(); ++j) {
     const double r = (x - p.position[at(j)]).norm();
     if (r >= solver.kernel().support_radius()) continue;
-    const double weight = volume * solver.kernel().value(r);
+    const double weight = p.mass[at(j)] / solver.model().density * solver.kernel().value(r);
     const std::array<double, N> values = field(j);
     for (std::size_t k = 0; k < N; ++k) sums[k] += weight * values[k];
     sums[N] += weight;
@@ -57,7 +56,6 @@ double surface_elevation(const FluidSolver& solver, const Eigen::Vector3d& point
   const double base = point.dot(up);
   const int samples = std::max(2, static_cast<int>(std::ceil((top - base) / step)) + 1);
   const double support = solver.kernel().support_radius();
-  const double volume = model.particle_mass() / model.density;
   // Colour sums at the samples from this rank's particles near the line.
   std::vector<double> colour(at(samples), 0.0);
   const Particles& p = solver.particles();
@@ -71,7 +69,7 @@ double surface_elevation(const FluidSolver& solver, const Eigen::Vector3d& point
     for (int k = first; k <= last; ++k) {
       const double dz = height - k * step;
       const double r = std::sqrt(lateral_squared + dz * dz);
-      if (r < support) colour[at(k)] += volume * solver.kernel().value(r);
+      if (r < support) colour[at(k)] += p.mass[at(j)] / model.density * solver.kernel().value(r);
     }
   }
   MPI_Allreduce(MPI_IN_PLACE, colour.data(), samples, MPI_DOUBLE, MPI_SUM, solver.comm());

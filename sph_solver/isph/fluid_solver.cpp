@@ -1,6 +1,7 @@
 #include "sph_solver/isph/fluid_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -120,11 +121,13 @@ void FluidSolver::remove_escaped() {
     }
   }
   if (removed > 0) particles_.reorder(kept);
-  removed_this_step_ = global_sum(comm_, removed);
-  double total_volume = 0.0;
-  MPI_Allreduce(&volume, &total_volume, 1, MPI_DOUBLE, MPI_SUM, comm_);
+  // One reduction for the three sums (counts are exact in a double below 2^53).
+  std::array<double, 3> sums{static_cast<double>(removed), volume, static_cast<double>(particles_.count())};
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), 3, MPI_DOUBLE, MPI_SUM, comm_);
+  removed_this_step_ = static_cast<long long>(sums[0]);
   removed_count_ += removed_this_step_;
-  removed_volume_ += total_volume;
+  removed_volume_ += sums[1];
+  particles_after_removal_ = static_cast<long long>(sums[2]);
 }
 
 void FluidSolver::redistribute() {
@@ -280,6 +283,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   }
   ++steps_;
   report.removed_particles = removed_this_step_;
+  report.particles = particles_after_removal_;
   report.max_speed = max_speed();
   if (!std::isfinite(report.max_speed)) {
     std::ostringstream message;

@@ -44,6 +44,7 @@ struct StepReport {
   double ppe_residual = 0.0;
   long long free_surface_particles = 0;  ///< all ranks
   long long removed_particles = 0;       ///< this step, all ranks
+  long long particles = 0;               ///< in the step, all ranks
   double max_speed = 0.0;                ///< after the step, all ranks
   double max_density_error = 0.0;        ///< max |rho* - rho0| / rho0 over the liquid's interior
 };
@@ -103,6 +104,7 @@ class FluidSolver {
   long long removed_count_ = 0;
   double removed_volume_ = 0.0;
   long long removed_this_step_ = 0;
+  long long particles_after_removal_ = 0;
 };
 
 }  // namespace tankfsi::sph

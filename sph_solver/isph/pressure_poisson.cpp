@@ -18,12 +18,6 @@ bool is_option_name(const std::string& token) {
   return token.size() > 1 && token[0] == '-' && !(std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.');
 }
 
-/// A row of the (negated) PPE matrix in global column indices.
-struct Row {
-  std::vector<PetscInt> columns;
-  std::vector<PetscScalar> values;
-};
-
 }  // namespace
 
 void apply_default_petsc_options(const std::string& options) {
@@ -68,42 +62,48 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
                                       std::span<double> pressure) {
   const int owned = n.owned;
   const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
-  std::vector<Row> rows(at(owned));
-  std::vector<PetscInt> diagonal_nonzeros(at(owned), 1);
-  std::vector<PetscInt> off_diagonal_nonzeros(at(owned), 0);
+  // The rows in CSR form, in buffers kept from step to step (no allocation once
+  // they have grown to the problem's size).
+  row_begin_.assign(1, 0);
+  columns_.clear();
+  values_.clear();
+  diagonal_nonzeros_.assign(at(owned), 1);
+  off_diagonal_nonzeros_.assign(at(owned), 0);
   for (int i = 0; i < owned; ++i) {
-    Row& row = rows[at(i)];
-    row.columns.push_back(static_cast<PetscInt>(global_index[at(i)]));
-    row.values.push_back(1.0);
-    if (free_surface[at(i)] != 0) continue;
-    double diagonal = 0.0;
-    const Eigen::Vector3d& x_i = n.position[at(i)];
-    for (const int j : n.neighbours.neighbours_of(i)) {
-      const double r = (x_i - n.position[at(j)]).norm();
-      const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
-      const double a = laplacian_weight(n.kernel, n.model, r, volume);
-      diagonal -= a;
-      if (free_surface[at(j)] != 0) continue;
-      row.columns.push_back(static_cast<PetscInt>(global_index[at(j)]));
-      row.values.push_back(a);
-      ++(j < owned ? diagonal_nonzeros : off_diagonal_nonzeros)[at(i)];
+    const std::size_t diagonal_slot = values_.size();
+    columns_.push_back(static_cast<PetscInt>(global_index[at(i)]));
+    values_.push_back(1.0);
+    if (free_surface[at(i)] == 0) {
+      double diagonal = 0.0;
+      const Eigen::Vector3d& x_i = n.position[at(i)];
+      for (const int j : n.neighbours.neighbours_of(i)) {
+        const double r = (x_i - n.position[at(j)]).norm();
+        const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
+        const double a = laplacian_weight(n.kernel, n.model, r, volume);
+        diagonal -= a;
+        if (free_surface[at(j)] != 0) continue;
+        columns_.push_back(static_cast<PetscInt>(global_index[at(j)]));
+        values_.push_back(a);
+        ++(j < owned ? diagonal_nonzeros_ : off_diagonal_nonzeros_)[at(i)];
+      }
+      // An isolated particle (no neighbours, all on the surface) would give a zero row.
+      values_[diagonal_slot] = diagonal > 0.0 ? diagonal : 1.0;
     }
-    // An isolated particle (no neighbours, all on the surface) would give a zero row.
-    row.values[0] = diagonal > 0.0 ? diagonal : 1.0;
+    row_begin_.push_back(static_cast<PetscInt>(values_.size()));
   }
 
   Mat matrix = nullptr;
   Vec rhs = nullptr;
   Vec solution = nullptr;
-  check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, diagonal_nonzeros.data(), 0,
-                     off_diagonal_nonzeros.data(), &matrix),
+  check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, diagonal_nonzeros_.data(), 0,
+                     off_diagonal_nonzeros_.data(), &matrix),
         "MatCreateAIJ");
   check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   for (int i = 0; i < owned; ++i) {
-    const Row& row = rows[at(i)];
     const PetscInt global_row = first_row + i;
-    check(MatSetValues(matrix, 1, &global_row, static_cast<PetscInt>(row.columns.size()), row.columns.data(),
-                       row.values.data(), INSERT_VALUES),
+    const PetscInt begin = row_begin_[at(i)];
+    check(MatSetValues(matrix, 1, &global_row, row_begin_[at(i) + 1] - begin, columns_.data() + begin,
+                       values_.data() + begin, INSERT_VALUES),
           "MatSetValues");
   }
   check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "sph_solver/isph/particle_terms.hpp"
 
@@ -53,6 +54,13 @@ class PressurePoisson {
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   int solved_size_ = -1;  ///< local rows of the last solve
+  // Assembly buffers, reused from step to step: the rows in CSR form (global
+  // columns) and the per-row counts for preallocation.
+  std::vector<PetscInt> row_begin_;
+  std::vector<PetscInt> columns_;
+  std::vector<PetscScalar> values_;
+  std::vector<PetscInt> diagonal_nonzeros_;
+  std::vector<PetscInt> off_diagonal_nonzeros_;
 };
 
 /// Applies "-name value -flag ..." option text, each option unless already set

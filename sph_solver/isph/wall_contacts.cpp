@@ -41,19 +41,16 @@ WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& k
       table_(kernel, model.spacing),
       support_radius_(kernel.support_radius()),
       dimension_(model.dimension),
-      velocities_(mesh_->vertex_count(), Eigen::Vector3d::Zero()),
-      accelerations_(mesh_->vertex_count(), Eigen::Vector3d::Zero()) {
+      velocities_(mesh_->vertex_count(), Eigen::Vector3d::Zero()) {
   update_curvature();
 }
 
-void WallModel::move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities,
-                     std::span<const Eigen::Vector3d> accelerations) {
-  if (velocities.size() != mesh_->vertex_count() || accelerations.size() != mesh_->vertex_count())
-    throw std::invalid_argument("WallModel::move: one velocity and one acceleration per vertex are needed");
+void WallModel::move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities) {
+  if (velocities.size() != mesh_->vertex_count())
+    throw std::invalid_argument("WallModel::move: one velocity per vertex is needed");
   mesh_->move_vertices(positions);
   index_.refit();
   velocities_.assign(velocities.begin(), velocities.end());
-  accelerations_.assign(accelerations.begin(), accelerations.end());
   update_curvature();
 }
 
@@ -102,7 +99,6 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       const double h = interpolate_vertex_values(mesh, walls.curvature(), hit.triangle, contact.barycentric);
       contact.values = curved(walls.table().at(contact.distance), h);
       contact.velocity = interpolate(mesh, walls.vertex_velocities(), hit.triangle, contact.barycentric);
-      contact.acceleration = interpolate(mesh, walls.vertex_accelerations(), hit.triangle, contact.barycentric);
       result.contacts.push_back(contact);
     }
     result.offsets.push_back(static_cast<int>(result.contacts.size()));

@@ -11,8 +11,8 @@
 // nearest triangle already stands for it. A triangle whose plane the particle lies
 // behind (the far side of a thin plate) is not a contact. The half-spaces of two
 // walls meeting at a corner overlap behind the corner; that overlap is counted
-// twice (a known limitation of per-wall tables; its effect on the hydrostatic test
-// is measured in tests/validation).
+// twice (a known limitation of per-wall tables: the unit tests leave corner
+// particles out of their checks; the hydrostatic validation covers the whole tank).
 //
 // Distance (eq 15): the true point-triangle distance to the nearest triangle of the
 // wall, the normal that of its plane. A particle that has crossed a wall by less
@@ -53,12 +53,11 @@ class WallModel {
   /// Mean curvature per vertex, sharp features zeroed (see above).
   [[nodiscard]] const std::vector<double>& curvature() const { return curvature_; }
   [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_velocities() const { return velocities_; }
-  [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_accelerations() const { return accelerations_; }
 
-  /// Moves the wall (a deforming structure): positions, velocities and
-  /// accelerations per vertex, in the tank-base frame. Updates the index and curvature.
-  void move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities,
-            std::span<const Eigen::Vector3d> accelerations);
+  /// Moves the wall (a deforming structure): positions and velocities per vertex,
+  /// in the tank-base frame. Updates the index and curvature. (The wall's
+  /// acceleration is not needed: the Neumann wall pressure follows from v* - v_wall.)
+  void move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities);
 
  private:
   void update_curvature();
@@ -70,7 +69,6 @@ class WallModel {
   int dimension_;
   std::vector<double> curvature_;
   std::vector<Eigen::Vector3d> velocities_;
-  std::vector<Eigen::Vector3d> accelerations_;
 };
 
 /// One wall seen by one particle.
@@ -81,7 +79,6 @@ struct WallContact {
   double distance = 0.0;                                  ///< r_iw >= 0
   WallKernelValues values;                                ///< curvature-corrected
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();     ///< wall velocity at the closest point
-  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
 };
 
 /// The contacts of particles 0 .. n-1 in CSR form.

@@ -32,20 +32,13 @@ def main():
     parser.add_argument("solver")
     parser.add_argument("case")
     args = parser.parse_args()
-    case = yaml.safe_load(open(args.case))
-    for setting in args.set:  # overrides of plain scalars, enough for the tests
-        key, value = setting.split("=", 1)
-        node = case
-        *parents, last = key.split(".")
-        for p in parents:
-            node = node.setdefault(p, {})
-        node[last] = yaml.safe_load(value)
-    fluid = case["fluid"]
-    rho, g, spacing, dim = fluid["density"], fluid.get("gravity", 9.81), fluid["spacing"], fluid["dimension"]
-    surface = math.ceil(fluid["fill"]["level"] / spacing - 1e-9) * spacing
     failures = []
     with tempfile.TemporaryDirectory() as scratch:
         folder = run_solver(args.launcher, args.solver, args.case, f"{scratch}/run", args.set)
+        # The case as the solver read it, overrides and defaults applied.
+        fluid = yaml.safe_load((folder / "case.resolved.yaml").read_text())["fluid"]
+        rho, g, spacing, dim = fluid["density"], fluid["gravity"], fluid["spacing"], fluid["dimension"]
+        surface = math.ceil(fluid["fill"]["level"] / spacing - 1e-9) * spacing
         end = summary(folder)["fluid"]["end_time_s"]
         for record in fluid.get("probes", []):
             if record["quantity"] != "pressure":
