@@ -54,7 +54,7 @@ class Outputs {
           std::vector<std::string>{"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
                                    "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_,
                                    "force_z_N" + depth_suffix_, "kinetic_energy_J" + depth_suffix_, "time_step_s",
-                                   "ppe_iterations"},
+                                   "ppe_iterations", "free_surface_particles", "max_density_error"},
           c.field_interval);
     }
   }
@@ -72,7 +72,9 @@ class Outputs {
     if (global_)
       global_->append(t, std::vector<double>{count, static_cast<double>(solver_.removed_count()),
                                              solver_.removed_volume(), total.x(), total.y(), total.z(), energy,
-                                             report.time_step, static_cast<double>(report.ppe_iterations)});
+                                             report.time_step, static_cast<double>(report.ppe_iterations),
+                                             static_cast<double>(report.free_surface_particles),
+                                             report.max_density_error});
     last_total_force_ = total;
   }
 
