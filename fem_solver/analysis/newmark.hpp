@@ -1,0 +1,55 @@
+#pragma once
+// NewmarkIntegrator: M a + C v + K u = F(t) with the average-acceleration rule
+// (gamma = 1/2, beta = 1/4: unconditionally stable, no numerical damping,
+// METHOD.md §3), C = alpha M + beta_R K, M lumped (diagonal). The effective
+// matrix K_eff = (1 + a1 beta_R) K + (a0 + a1 alpha) M, a0 = 1/(beta dt^2),
+// a1 = gamma/(beta dt), is assembled and factorised once per time step size
+// and reused every step; a new dt refactorises.
+#include <memory>
+
+#include "fem_solver/analysis/rayleigh_damping.hpp"
+#include "fem_solver/assembly/linear_solve.hpp"
+#include "fem_solver/assembly/petsc_handle.hpp"
+
+namespace tankfsi::fem {
+
+class NewmarkIntegrator {
+ public:
+  static constexpr double gamma = 0.5;
+  static constexpr double beta = 0.25;
+
+  /// K and the mass diagonal are kept by reference (PETSc reference counts);
+  /// u, v start at zero and a from M a = F0 - K u - C v at the first step.
+  NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping, SolverFactory factory);
+
+  /// Sets the state at the current time; the acceleration follows from the
+  /// equation of motion with the load `load` (M is diagonal: no solve).
+  void initialise(Vec displacement, Vec velocity, Vec load);
+  /// Advances by dt to the load `load` at the end of the step.
+  void step(double dt, Vec load);
+
+  [[nodiscard]] Vec displacement() const { return u_.get(); }
+  [[nodiscard]] Vec velocity() const { return v_.get(); }
+  [[nodiscard]] Vec acceleration() const { return a_.get(); }
+  /// 1/2 v.M v + 1/2 u.K u (J): conserved by the undamped, unloaded rule.
+  [[nodiscard]] double energy() const;
+  [[nodiscard]] const RayleighCoefficients& damping() const { return damping_; }
+  /// Number of factorisations so far (one per distinct dt).
+  [[nodiscard]] int factorisations() const { return factorisations_; }
+
+ private:
+  void factorise(double dt);
+  void damping_times(Vec x, Vec out) const;  ///< out = C x
+
+  Mat k_;
+  Vec m_;
+  RayleighCoefficients damping_;
+  SolverFactory factory_;
+  std::unique_ptr<LinearSolve> solver_;
+  PetscMatrix effective_;
+  double factorised_dt_ = 0.0;
+  int factorisations_ = 0;
+  PetscVector u_, v_, a_, rhs_, work_, work2_;
+};
+
+}  // namespace tankfsi::fem

@@ -1,0 +1,111 @@
+#include "fem_solver/analysis/structure_solver.hpp"
+
+#include "fem_solver/analysis/optional_stage.hpp"
+
+#include <stdexcept>
+
+namespace tankfsi::fem {
+namespace {
+
+Eigen::Vector3d translational_total(const NodalValues& values) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < values.size(); i += dofs_per_node)
+    for (int k = 0; k < 3; ++k) sum(k) += values[i + static_cast<std::size_t>(k)];
+  return sum;
+}
+
+}  // namespace
+
+StructureSolver::StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
+                                 const GroundMotion& motion)
+    : system_(system),
+      motion_(motion),
+      integrator_(system.stiffness(), system.mass(), damping,
+                  [&system](Mat m) -> std::unique_ptr<LinearSolve> { return system.make_solver(m); }) {
+  SystemAssembler& assembler = system_.assembler();
+  constant_load_ = assemble_loads(assembler, constant_loads);
+  assembler.add_prescribed_lift(constant_load_.get());
+  petsc_check(VecAssemblyBegin(constant_load_.get()), "VecAssemblyBegin");
+  petsc_check(VecAssemblyEnd(constant_load_.get()), "VecAssemblyEnd");
+  constant_total_ = translational_total(nodal_loads(system_.model(), constant_loads));
+  external_load_ = assembler.create_vector();
+  petsc_check(VecSet(external_load_.get(), 0.0), "VecSet");
+  load_ = assembler.create_vector();
+  for (int k = 0; k < 3; ++k) {
+    mass_influence_[static_cast<std::size_t>(k)] = assembler.mass_times_influence(k);
+    // The mass the ground load acts on: that of the free DOFs (supports move with the ground).
+    PetscReal sum = 0.0;
+    petsc_check(VecSum(mass_influence_[static_cast<std::size_t>(k)].get(), &sum), "VecSum");
+    free_mass_(k) = sum;
+  }
+  build_load(0.0);
+  PetscVector zero = assembler.create_vector();
+  petsc_check(VecSet(zero.get(), 0.0), "VecSet");
+  integrator_.initialise(zero.get(), zero.get(), load_.get());
+  refresh_state();
+}
+
+void StructureSolver::set_interface(InterfaceMesh interface) { interface_ = std::move(interface); }
+
+void StructureSolver::set_external_loads(std::span<const double> forces) {
+  if (forces.size() != 3 * interface_.node_ids.size())
+    throw std::invalid_argument("set_external_loads: " + std::to_string(forces.size()) + " values for " +
+                                std::to_string(interface_.node_ids.size()) + " interface vertices (3 each)");
+  NodalValues nodal(dofs_per_node * system_.model().mesh.nodes.size(), 0.0);
+  for (std::size_t i = 0; i < interface_.node_ids.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k)
+      nodal[dofs_per_node * static_cast<std::size_t>(interface_.node_ids[i]) + k] = forces[3 * i + k];
+  external_total_ = translational_total(nodal);
+  system_.assembler().scatter(nodal, external_load_.get());
+}
+
+void StructureSolver::build_load(double t) {
+  // F = F_constant + F_external - sum_k a_g,k(t) M iota_k
+  const Eigen::Vector3d ground = motion_.acceleration(t);
+  petsc_check(VecWAXPY(load_.get(), 1.0, constant_load_.get(), external_load_.get()), "VecWAXPY");
+  for (int k = 0; k < 3; ++k)
+    if (ground(k) != 0.0)
+      petsc_check(VecAXPY(load_.get(), -ground(k), mass_influence_[static_cast<std::size_t>(k)].get()), "VecAXPY");
+}
+
+void StructureSolver::advance(double dt) {
+  const auto stage = time_stage(system_.timers(), "shell_step");
+  build_load(time_ + dt);
+  try {
+    integrator_.step(dt, load_.get());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("structure step " + std::to_string(steps_ + 1) + " to t = " + std::to_string(time_ + dt) +
+                             " s failed: " + e.what());
+  }
+  time_ += dt;
+  ++steps_;
+  refresh_state();
+}
+
+void StructureSolver::refresh_state() {
+  SystemAssembler& assembler = system_.assembler();
+  displacement_ = assembler.gather(integrator_.displacement(), 1.0);
+  velocity_ = assembler.gather(integrator_.velocity(), 0.0);
+  acceleration_ = assembler.gather(integrator_.acceleration(), 0.0);
+}
+
+std::vector<double> StructureSolver::interface_values(const NodalValues& values) const {
+  std::vector<double> out;
+  out.reserve(3 * interface_.node_ids.size());
+  for (const int node : interface_.node_ids)
+    for (std::size_t k = 0; k < 3; ++k) out.push_back(values[dofs_per_node * static_cast<std::size_t>(node) + k]);
+  return out;
+}
+
+std::vector<double> StructureSolver::interface_displacements() const { return interface_values(displacement_); }
+std::vector<double> StructureSolver::interface_velocities() const { return interface_values(velocity_); }
+
+Eigen::Vector3d StructureSolver::total_external_force() const {
+  return constant_total_ + external_total_ - free_mass_.cwiseProduct(motion_.acceleration(time_));
+}
+
+NodalValues StructureSolver::support_forces() const {
+  return system_.assembler().reactions(displacement_, velocity_, integrator_.damping().beta);
+}
+
+}  // namespace tankfsi::fem

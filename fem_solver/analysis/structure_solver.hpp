@@ -1,0 +1,78 @@
+#pragma once
+// StructureSolver: the shell's transient response, and the API the coupling
+// calls (DESIGN.md, participant loop):
+//
+//   StructureSolver s(system, damping, constant_loads, ground_motion);
+//   s.set_interface(extract_interface(mesh, "wetted"));
+//   loop: s.set_external_loads(forces);  // 3 per interface vertex, N
+//         s.advance(dt);                  // Newmark, K_eff factorised once per dt
+//         s.interface_displacements(); s.interface_velocities();
+//
+// Equation of motion in the tank-base frame (METHOD.md §3): M a + C v + K u =
+// F_constant + F_external - M iota a_g(t), iota the rigid-body influence of
+// each ground direction, base nodes fixed; u, v, a relative to the base.
+// External loads are held over a step (the coupling ramps them between
+// windows by calling set_external_loads before each step).
+#include <span>
+
+#include "common/excitation/ground_motion.hpp"
+#include "fem_solver/analysis/load_set.hpp"
+#include "fem_solver/analysis/newmark.hpp"
+#include "fem_solver/analysis/structure_system.hpp"
+#include "fem_solver/mesh/interface_mesh.hpp"
+
+namespace tankfsi::fem {
+
+class StructureSolver {
+ public:
+  /// Starts at rest at t = 0 with the constant loads applied.
+  StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
+                  const GroundMotion& motion);
+
+  void set_interface(InterfaceMesh interface);
+  [[nodiscard]] const InterfaceMesh& interface() const { return interface_; }
+  /// Forces on the interface vertices (3 per vertex, global axes); the same on
+  /// every rank. Loads on supported DOFs go into the supports.
+  void set_external_loads(std::span<const double> forces);
+  /// One Newmark step to t + dt; throws std::runtime_error naming the time if
+  /// the solve fails.
+  void advance(double dt);
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] long long steps() const { return steps_; }
+  /// The state of the whole structure (6 per node), on every rank.
+  [[nodiscard]] const NodalValues& displacement() const { return displacement_; }
+  [[nodiscard]] const NodalValues& velocity() const { return velocity_; }
+  [[nodiscard]] const NodalValues& acceleration() const { return acceleration_; }
+  /// 3 per interface vertex.
+  [[nodiscard]] std::vector<double> interface_displacements() const;
+  [[nodiscard]] std::vector<double> interface_velocities() const;
+  /// Total external load on the structure now: constant + external + ground (N).
+  [[nodiscard]] Eigen::Vector3d total_external_force() const;
+  /// Forces the structure puts on its supports (-K (u + beta v) there).
+  [[nodiscard]] NodalValues support_forces() const;
+  [[nodiscard]] double energy() const { return integrator_.energy(); }
+  [[nodiscard]] const NewmarkIntegrator& integrator() const { return integrator_; }
+
+ private:
+  void build_load(double t);
+  void refresh_state();
+  [[nodiscard]] std::vector<double> interface_values(const NodalValues& values) const;
+
+  StructureSystem& system_;
+  const GroundMotion& motion_;
+  NewmarkIntegrator integrator_;
+  PetscVector constant_load_;
+  PetscVector external_load_;
+  PetscVector load_;
+  std::array<PetscVector, 3> mass_influence_;
+  Eigen::Vector3d constant_total_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d external_total_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d free_mass_ = Eigen::Vector3d::Zero();
+  InterfaceMesh interface_;
+  NodalValues displacement_, velocity_, acceleration_;
+  double time_ = 0.0;
+  long long steps_ = 0;
+};
+
+}  // namespace tankfsi::fem

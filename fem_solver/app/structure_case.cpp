@@ -1,0 +1,62 @@
+#include "fem_solver/app/structure_case.hpp"
+
+#include <cmath>
+
+#include "common/config/config_error.hpp"
+
+namespace tankfsi::fem {
+namespace {
+
+std::vector<StructureProbe> read_probes(const CaseConfig& config, const ShellMesh& mesh) {
+  std::vector<StructureProbe> probes;
+  for (const ConfigView& record : config.records("structure.probes")) {
+    StructureProbe p{record.text("name"), record.text("quantity"), mesh.nearest_node(record.vector3("position"))};
+    for (const auto& other : probes)
+      if (other.name == p.name) throw record.error_at("name", "probe name '" + p.name + "' is used twice");
+    if (p.name == "structure") throw record.error_at("name", "'structure' is the name of the run's global probe file");
+    probes.push_back(p);
+  }
+  return probes;
+}
+
+int mode_number(const CaseConfig& config, double value) {
+  if (value != std::floor(value)) throw config.error_at("structure.damping.target_modes", "mode numbers are whole numbers");
+  return static_cast<int>(value);
+}
+
+}  // namespace
+
+StructureCase read_structure_case(const CaseConfig& config) {
+  config.require_section("structure", "fem_solver");
+  StructureCase c;
+  c.analysis = config.text("structure.analysis");
+  c.mesh = read_structure_mesh(config);
+  c.sections = read_sections(config, c.mesh);
+  c.drilling_factor = config.real("structure.drilling_stiffness");
+  c.constraints = read_constraints(config, c.mesh);
+  c.loads = read_loads(config, c.mesh);
+  c.probes = read_probes(config, c.mesh);
+  c.solver_options = config.text("structure.solver_options");
+  c.field_interval = config.real("output.field_interval");
+  c.probe_interval = config.real("output.probe_interval");
+  if (c.analysis == "modal" || c.analysis == "dynamic") c.modes = static_cast<int>(config.integer("structure.modes"));
+  if (c.analysis == "dynamic") {
+    if (!config.has("end_time")) throw config.error_at("end_time", "a dynamic analysis needs end_time (the simulated time)");
+    c.end_time = config.real("end_time");
+    c.time_step = config.real("structure.time_step");
+    const auto modes = config.real_vector("structure.damping.target_modes");
+    c.damping.first_mode = mode_number(config, modes[0]);
+    c.damping.second_mode = mode_number(config, modes[1]);
+    if (c.damping.first_mode == c.damping.second_mode)
+      throw config.error_at("structure.damping.target_modes", "the two target modes must differ");
+    c.damping.first_ratio = config.real("structure.damping.ratio");
+    c.damping.second_ratio =
+        config.has("structure.damping.second_ratio") ? config.real("structure.damping.second_ratio") : c.damping.first_ratio;
+    if (std::max(c.damping.first_mode, c.damping.second_mode) > c.modes)
+      throw config.error_at("structure.damping.target_modes",
+                            "a target mode beyond structure.modes (" + std::to_string(c.modes) + ") is not computed");
+  }
+  return c;
+}
+
+}  // namespace tankfsi::fem

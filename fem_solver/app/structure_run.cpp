@@ -1,0 +1,201 @@
+#include "fem_solver/app/structure_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "fem_solver/analysis/modal_analysis.hpp"
+#include "fem_solver/analysis/static_analysis.hpp"
+#include "fem_solver/analysis/structure_solver.hpp"
+#include "fem_solver/app/structure_output.hpp"
+
+namespace tankfsi::fem {
+namespace {
+
+nlohmann::json model_summary(const StructureSystem& system, const std::string& analysis) {
+  const ShellMesh& mesh = system.model().mesh;
+  int ranks = 1;
+  MPI_Comm_size(system.comm(), &ranks);
+  return {{"analysis", analysis},
+          {"nodes", mesh.nodes.size()},
+          {"quadrilaterals", mesh.quad_count()},
+          {"triangles", mesh.triangle_count()},
+          {"equations", system.dofs().global_size()},
+          {"constrained_dofs", system.dofs().constrained_count()},
+          {"mass_kg", system.model().total_mass()},
+          {"ranks", ranks}};
+}
+
+nlohmann::json probe_values(const StructureCase& c, const NodalValues& displacement) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& p : c.probes) {
+    const std::size_t offset = 6 * static_cast<std::size_t>(p.node) + (p.quantity == "rotation" ? 3 : 0);
+    out[p.name] = {{"quantity", p.quantity},
+                   {"node", p.node},
+                   {"value", {displacement[offset], displacement[offset + 1], displacement[offset + 2]}}};
+  }
+  return out;
+}
+
+double largest_translation(const NodalValues& values) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < values.size(); i += 6)
+    largest = std::max(largest, std::sqrt(values[i] * values[i] + values[i + 1] * values[i + 1] + values[i + 2] * values[i + 2]));
+  return largest;
+}
+
+nlohmann::json run_static(ProgramContext& context, const StructureCase& c, StructureSystem& system) {
+  const StaticResult result = solve_static(system, c.loads);
+  StructureOutput output(context, c, system);
+  StructureTotals totals = support_totals(system.model().mesh, result.reactions);
+  const NodalValues applied = nodal_loads(system.model(), c.loads);
+  for (std::size_t i = 0; i < applied.size(); i += 6)
+    for (int k = 0; k < 3; ++k) totals.external_force(k) += applied[i + static_cast<std::size_t>(k)];
+  output.write_fields(0.0, result.displacement, {});
+  output.sample(0.0, result.displacement, {}, {}, totals);
+  output.flush();
+  context.log.info("static: largest displacement ", largest_translation(result.displacement), " m (", result.solver, ")");
+  nlohmann::json summary = model_summary(system, "static");
+  summary["solver"] = result.solver;
+  summary["probes"] = probe_values(c, result.displacement);
+  summary["max_displacement_m"] = largest_translation(result.displacement);
+  summary["external_force_N"] = {totals.external_force.x(), totals.external_force.y(), totals.external_force.z()};
+  summary["support_force_N"] = {totals.support_force.x(), totals.support_force.y(), totals.support_force.z()};
+  return {{"structure", summary}};
+}
+
+ModalResult modes_of(ProgramContext& context, StructureSystem& system, int count) {
+  const auto stage = context.timers.time("shell_modal");
+  return solve_modes(system.assembler(), system.stiffness(), count);
+}
+
+/// modal.periods_s lists the periods in ascending order (the highest computed
+/// mode first); modal.modes lists the modes in their own order (ascending
+/// frequency, mode 1 the fundamental) with period and effective masses.
+nlohmann::json modal_summary(const ModalResult& modes) {
+  nlohmann::json periods = nlohmann::json::array(), list = nlohmann::json::array();
+  Eigen::Vector3d cumulative = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < modes.modes.size(); ++k) {
+    const NaturalMode& m = modes.modes[k];
+    periods.push_back(m.period);
+    list.push_back({{"mode", k + 1},
+                    {"frequency_Hz", m.frequency},
+                    {"period_s", m.period},
+                    {"effective_mass_kg", {m.effective_mass.x(), m.effective_mass.y(), m.effective_mass.z()}}});
+    cumulative += m.effective_mass;
+  }
+  std::sort(periods.begin(), periods.end());
+  const Eigen::Vector3d ratio = cumulative.cwiseQuotient(modes.free_mass);
+  return {{"periods_s", periods},
+          {"fundamental_period_s", modes.modes.front().period},
+          {"modes", list},
+          {"free_mass_kg", {modes.free_mass.x(), modes.free_mass.y(), modes.free_mass.z()}},
+          {"cumulative_effective_mass_ratio", {ratio.x(), ratio.y(), ratio.z()}},
+          {"iterations", modes.iterations}};
+}
+
+nlohmann::json run_modal(ProgramContext& context, const StructureCase& c, StructureSystem& system) {
+  const ModalResult modes = modes_of(context, system, c.modes);
+  StructureOutput output(context, c, system);
+  // Mode k is snapshot k (its "time" is the mode number), M-normalised.
+  for (std::size_t k = 0; k < modes.modes.size(); ++k) {
+    output.write_fields(static_cast<double>(k + 1), modes.modes[k].shape, {});
+    context.log.info("mode ", k + 1, ": f = ", modes.modes[k].frequency, " Hz, T = ", modes.modes[k].period,
+                     " s, effective mass x/y/z = ", modes.modes[k].effective_mass.x(), " / ",
+                     modes.modes[k].effective_mass.y(), " / ", modes.modes[k].effective_mass.z(), " kg");
+  }
+  return {{"structure", model_summary(system, "modal")}, {"modal", modal_summary(modes)}};
+}
+
+nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, StructureSystem& system,
+                           const GroundMotion& motion) {
+  const ModalResult modes = modes_of(context, system, c.modes);
+  const auto& first = modes.modes[static_cast<std::size_t>(c.damping.first_mode - 1)];
+  const auto& second = modes.modes[static_cast<std::size_t>(c.damping.second_mode - 1)];
+  RayleighCoefficients damping;
+  try {
+    damping = rayleigh_from_modes(first.omega, c.damping.first_ratio, second.omega, c.damping.second_ratio);
+  } catch (const std::invalid_argument& e) {
+    throw context.config.error_at("structure.damping.target_modes", e.what());
+  }
+  context.log.info("Rayleigh damping: alpha = ", damping.alpha, " 1/s, beta = ", damping.beta, " s (modes ",
+                   c.damping.first_mode, " and ", c.damping.second_mode, ": T = ", first.period, " s, ", second.period, " s)");
+  StructureSolver solver(system, damping, c.loads, motion);
+  const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
+  if (wetted) solver.set_interface(extract_interface(system.model().mesh, "wetted"));
+  StructureOutput output(context, c, system);
+  auto sample = [&]() {
+    StructureTotals totals = support_totals(system.model().mesh, solver.support_forces());
+    totals.external_force = solver.total_external_force();
+    totals.energy = solver.energy();
+    output.sample(solver.time(), solver.displacement(), solver.velocity(), solver.acceleration(), totals);
+    return totals;
+  };
+  sample();
+  output.write_fields(0.0, solver.displacement(), solver.velocity());
+  double next_probe = c.probe_interval;
+  double next_field = c.field_interval;
+  Eigen::Vector2d peak_shear = Eigen::Vector2d::Zero();
+  double peak_displacement = 0.0;
+  NodalValues last_good_u = solver.displacement(), last_good_v = solver.velocity();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    while (solver.time() < c.end_time * (1.0 - 1e-12)) {
+      last_good_u = solver.displacement();
+      last_good_v = solver.velocity();
+      const double dt = std::min(c.time_step, c.end_time - solver.time());
+      solver.advance(dt);
+      peak_displacement = std::max(peak_displacement, largest_translation(solver.displacement()));
+      if (solver.time() >= next_probe * (1.0 - 1e-12)) {
+        const StructureTotals totals = sample();
+        peak_shear = peak_shear.cwiseMax(totals.support_force.head<2>().cwiseAbs());
+        next_probe += c.probe_interval * std::max(1.0, std::floor((solver.time() - next_probe) / c.probe_interval) + 1.0);
+      }
+      if (solver.time() >= next_field * (1.0 - 1e-12)) {
+        output.write_fields(solver.time(), solver.displacement(), solver.velocity());
+        next_field += c.field_interval * std::max(1.0, std::floor((solver.time() - next_field) / c.field_interval) + 1.0);
+        context.log.info("t = ", solver.time(), " s, step ", solver.steps(), ", largest displacement ",
+                         largest_translation(solver.displacement()), " m");
+      }
+    }
+  } catch (const std::runtime_error& e) {
+    output.flush();
+    output.write_fields(solver.time() + 1e-9, last_good_u, last_good_v);
+    throw std::runtime_error(std::string(e.what()) + " — the last good state is the final snapshot of structure.xdmf");
+  }
+  output.flush();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json summary = model_summary(system, "dynamic");
+  summary["steps"] = solver.steps();
+  summary["end_time_s"] = solver.time();
+  summary["time_step_s"] = c.time_step;
+  summary["factorisations"] = solver.integrator().factorisations();
+  summary["seconds_per_step"] = seconds / static_cast<double>(std::max<long long>(solver.steps(), 1));
+  summary["rayleigh"] = {{"alpha_per_s", damping.alpha},
+                         {"beta_s", damping.beta},
+                         {"target_modes", {c.damping.first_mode, c.damping.second_mode}},
+                         {"target_periods_s", {first.period, second.period}},
+                         {"target_ratios", {c.damping.first_ratio, c.damping.second_ratio}}};
+  summary["peak_base_shear_N"] = {peak_shear.x(), peak_shear.y()};
+  summary["peak_displacement_m"] = peak_displacement;
+  summary["probes"] = probe_values(c, solver.displacement());
+  if (wetted) summary["interface_vertices"] = solver.interface().node_ids.size();
+  return {{"structure", summary}, {"modal", modal_summary(modes)}};
+}
+
+}  // namespace
+
+nlohmann::json run_structure(ProgramContext& context, StructureCase c, const GroundMotion& motion) {
+  ShellModel model(std::move(c.mesh), c.sections, c.drilling_factor);
+  c.mesh = ShellMesh{};
+  StructureSystem system(context.comm, std::move(model), c.constraints, &context.timers);
+  context.log.info("structure: ", system.model().mesh.nodes.size(), " nodes, ", system.model().mesh.quad_count(),
+                   " quadrilaterals, ", system.model().mesh.triangle_count(), " triangles, ",
+                   system.dofs().global_size(), " equations");
+  if (c.analysis == "static") return run_static(context, c, system);
+  if (c.analysis == "modal") return run_modal(context, c, system);
+  return run_dynamic(context, c, system, motion);
+}
+
+}  // namespace tankfsi::fem

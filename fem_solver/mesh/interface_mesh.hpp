@@ -1,0 +1,26 @@
+#pragma once
+// The interface the coupling exchanges (DESIGN.md, data flow): the wetted
+// surface of the shell as triangles (each quad split in two along its 0-2
+// diagonal) over the mesh's own nodes, named by global node id. Triangles are
+// wound so that their normals point into the liquid — the opposite of the
+// shell's outward normals — as the fluid side expects of its walls.
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fem_solver/mesh/shell_mesh.hpp"
+
+namespace tankfsi::fem {
+
+struct InterfaceMesh {
+  std::vector<int> node_ids;                   ///< global (ShellMesh) node ids, ascending
+  std::vector<Eigen::Vector3d> positions;      ///< per interface vertex
+  std::vector<std::array<int, 3>> triangles;   ///< indices into node_ids
+};
+
+/// Throws std::out_of_range if the mesh has no element set or region `name`.
+[[nodiscard]] InterfaceMesh extract_interface(const ShellMesh& mesh, const std::string& name);
+
+}  // namespace tankfsi::fem

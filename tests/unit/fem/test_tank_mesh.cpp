@@ -1,0 +1,108 @@
+// The tank generator: a closed, consistently oriented surface with the
+// regions and sets the cases use; and the wetted interface mesh.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "fem_solver/mesh/interface_mesh.hpp"
+#include "fem_solver/mesh/tank_mesh.hpp"
+
+using namespace tankfsi::fem;
+
+namespace {
+
+TankSpec small_tank() {
+  TankSpec t;
+  t.radius = 15.0;
+  t.wall_height = 18.0;
+  t.dome_radius = 30.0;
+  t.element_size = 2.0;
+  t.liquid_level = 14.8;
+  return t;
+}
+
+/// Signed volume enclosed by the surface (divergence theorem over triangles
+/// and split quads): positive when the normals point outward.
+double enclosed_volume(const ShellMesh& mesh) {
+  double volume = 0.0;
+  for (const auto& e : mesh.elements) {
+    const auto p = [&](int k) { return mesh.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(k)])]; };
+    volume += p(0).dot(p(1).cross(p(2))) / 6.0;
+    if (e.node_count() == 4) volume += p(0).dot(p(2).cross(p(3))) / 6.0;
+  }
+  return volume;
+}
+
+}  // namespace
+
+TEST_CASE("tank mesh is watertight and consistently oriented outward", "[fem][mesh]") {
+  const ShellMesh mesh = tank_mesh(small_tank());
+  REQUIRE_NOTHROW(mesh.check());
+  // Closed and consistently oriented: every directed edge occurs exactly
+  // once and its reverse exactly once (a hole leaves an edge without its
+  // reverse, a flipped element repeats a directed edge).
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& e : mesh.elements)
+    for (int k = 0; k < e.node_count(); ++k)
+      ++directed[{e.nodes[static_cast<std::size_t>(k)], e.nodes[static_cast<std::size_t>((k + 1) % e.node_count())]}];
+  bool closed = true;
+  for (const auto& [edge, count] : directed) {
+    closed = closed && count == 1;
+    const auto reverse = directed.find({edge.second, edge.first});
+    closed = closed && reverse != directed.end() && reverse->second == 1;
+  }
+  CHECK(closed);
+  // Outward: the enclosed volume is positive and near the true one (cylinder
+  // plus spherical cap; the polygonal section loses ~(2 pi/n)^2/6 ~ 0.1 %).
+  const TankSpec t = small_tank();
+  const double rise = t.dome_radius - std::sqrt(t.dome_radius * t.dome_radius - t.radius * t.radius);
+  const double exact = std::numbers::pi * t.radius * t.radius * t.wall_height +
+                       std::numbers::pi * rise * rise * (3.0 * t.dome_radius - rise) / 3.0;
+  CHECK(enclosed_volume(mesh) == Approx(exact).epsilon(0.01));
+  // Quads on the wall and mostly on the roof; triangles on the bottom.
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const std::string& region = mesh.region_names[static_cast<std::size_t>(mesh.elements[e].region)];
+    if (region == "wall") CHECK(mesh.elements[e].node_count() == 4);
+    if (region == "bottom") CHECK(mesh.elements[e].node_count() == 3);
+  }
+  const auto roof = mesh.elements_of("roof");
+  std::size_t roof_quads = 0;
+  for (const int e : roof) roof_quads += mesh.elements[static_cast<std::size_t>(e)].node_count() == 4 ? 1 : 0;
+  CHECK(roof_quads > roof.size() / 2);
+  // Every element near the target size (0.4 to 1.6 of it: rings halve their count).
+  for (const auto& e : mesh.elements)
+    for (int k = 0; k < e.node_count(); ++k) {
+      const double edge = (mesh.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(k)])] -
+                           mesh.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>((k + 1) % e.node_count())])])
+                              .norm();
+      CHECK(edge > 0.4 * t.element_size);
+      CHECK(edge < 1.6 * t.element_size);
+    }
+  // The base is the whole bottom plate at z = 0.
+  for (const int n : mesh.node_sets.at("base")) CHECK(mesh.nodes[static_cast<std::size_t>(n)].z() == 0.0);
+  CHECK(mesh.nodes_of("bottom") == mesh.node_sets.at("base"));
+}
+
+TEST_CASE("wetted interface: triangles over the mesh's own nodes, facing the liquid", "[fem][mesh]") {
+  const ShellMesh mesh = tank_mesh(small_tank());
+  const InterfaceMesh interface = extract_interface(mesh, "wetted");
+  std::size_t expected = 0;
+  for (const int e : mesh.element_sets.at("wetted")) expected += mesh.elements[static_cast<std::size_t>(e)].node_count() - 2;
+  CHECK(interface.triangles.size() == expected);
+  for (std::size_t i = 0; i < interface.node_ids.size(); ++i)
+    CHECK(interface.positions[i] == mesh.nodes[static_cast<std::size_t>(interface.node_ids[i])]);
+  // Normals into the liquid: towards the axis on the wall, up on the bottom.
+  for (const auto& tri : interface.triangles) {
+    const auto& a = interface.positions[static_cast<std::size_t>(tri[0])];
+    const auto& b = interface.positions[static_cast<std::size_t>(tri[1])];
+    const auto& c = interface.positions[static_cast<std::size_t>(tri[2])];
+    const Eigen::Vector3d normal = (b - a).cross(c - a);
+    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    const Eigen::Vector3d inward = centre.z() < 1e-9 ? Eigen::Vector3d(0, 0, 1) : Eigen::Vector3d(-centre.x(), -centre.y(), 0.0);
+    CHECK(normal.dot(inward) > 0.0);
+    CHECK(centre.z() < 14.8 + small_tank().element_size);
+  }
+}
