@@ -45,9 +45,13 @@ void NewmarkIntegrator::factorise(double dt) {
   ++factorisations_;
 }
 
-void NewmarkIntegrator::step(double dt, Vec load) {
+void NewmarkIntegrator::prepare(double dt) {
   if (!(dt > 0.0)) throw std::invalid_argument("Newmark step needs dt > 0");
   if (!solver_ || std::abs(dt - factorised_dt_) > 1e-12 * dt) factorise(dt);
+}
+
+void NewmarkIntegrator::step(double dt, Vec load) {
+  prepare(dt);
   const double a0 = 1.0 / (beta * dt * dt);
   const double a1 = gamma / (beta * dt);
   const double a2 = 1.0 / (beta * dt);

@@ -34,6 +34,9 @@ class StructureSolver {
   /// Forces on the interface vertices (3 per vertex, global axes); the same on
   /// every rank. Loads on supported DOFs go into the supports.
   void set_external_loads(std::span<const double> forces);
+  /// Factorises K_eff for steps of dt ahead of the first advance (timed as
+  /// shell_factorise rather than inside the first shell_step).
+  void prepare(double dt) { integrator_.prepare(dt); }
   /// One Newmark step to t + dt; throws std::runtime_error naming the time if
   /// the solve fails.
   void advance(double dt);
