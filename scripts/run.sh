@@ -21,6 +21,13 @@ if ! grep -q '^structure:' "$case_file"; then
   exit 0
 fi
 
+# A structure-only case (no fluid section) runs fem_solver alone, on all cores.
+if ! grep -q '^fluid:' "$case_file"; then
+  mpirun -np "${TANKFSI_RANKS:-$jobs}" build/bin/fem_solver "$case_file" --output "$run_dir"
+  echo "run.sh: results in $run_dir (open structure.xdmf in ParaView; figures in summary.json)"
+  exit 0
+fi
+
 missing=()
 for program in sph_solver fem_solver; do
   [[ -x build/bin/$program ]] || missing+=("$program")

@@ -21,8 +21,8 @@ void NewmarkIntegrator::damping_times(Vec x, Vec out) const {
 }
 
 void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
-  petsc_check(VecCopy(displacement, u_.get()), "VecCopy");
-  petsc_check(VecCopy(velocity, v_.get()), "VecCopy");
+  if (displacement != u_.get()) petsc_check(VecCopy(displacement, u_.get()), "VecCopy");
+  if (velocity != v_.get()) petsc_check(VecCopy(velocity, v_.get()), "VecCopy");
   // a = M^-1 (F - K u - C v)
   petsc_check(MatMult(k_, u_.get(), work_.get()), "MatMult");
   petsc_check(VecWAXPY(rhs_.get(), -1.0, work_.get(), load), "VecWAXPY");
