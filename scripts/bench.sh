@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Benchmarks; figures go to bench/ (JSON and a Markdown table).
-# Usage: scripts/bench.sh fluid [--quick]
+# Usage: scripts/bench.sh fluid|structure [--quick]
 #   fluid: 2D dam break at L0 0.01 and 0.005 m, 3D tank >= 100k particles, 1 vs 2 ranks
 #          (--quick: a coarse dam break that runs in minutes on 2 cores)
+#   structure: the paper's tank mesh (cases/tank3d_dry, ~56k equations) on 1 and 2 ranks:
+#          assembly, factorisation, time per Newmark step, 20-mode modal time, peak memory
+#          (--quick: the coarse twin)
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 what=${1:-fluid}
@@ -11,5 +14,6 @@ bash "$repo_root/scripts/build.sh" release
 cd "$repo_root"
 case "$what" in
   fluid) /usr/bin/python3 scripts/bench/fluid_bench.py --solver build/bin/sph_solver --output bench "$@" ;;
-  *) echo "bench.sh: unknown benchmark '$what' (known: fluid)" >&2; exit 2 ;;
+  structure) /usr/bin/python3 scripts/bench/structure_bench.py --solver build/bin/fem_solver --output bench "$@" ;;
+  *) echo "bench.sh: unknown benchmark '$what' (known: fluid, structure)" >&2; exit 2 ;;
 esac

@@ -21,8 +21,8 @@ void NewmarkIntegrator::damping_times(Vec x, Vec out) const {
 }
 
 void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
-  petsc_check(VecCopy(displacement, u_.get()), "VecCopy");
-  petsc_check(VecCopy(velocity, v_.get()), "VecCopy");
+  if (displacement != u_.get()) petsc_check(VecCopy(displacement, u_.get()), "VecCopy");
+  if (velocity != v_.get()) petsc_check(VecCopy(velocity, v_.get()), "VecCopy");
   // a = M^-1 (F - K u - C v)
   petsc_check(MatMult(k_, u_.get(), work_.get()), "MatMult");
   petsc_check(VecWAXPY(rhs_.get(), -1.0, work_.get(), load), "VecWAXPY");
@@ -45,9 +45,13 @@ void NewmarkIntegrator::factorise(double dt) {
   ++factorisations_;
 }
 
-void NewmarkIntegrator::step(double dt, Vec load) {
+void NewmarkIntegrator::prepare(double dt) {
   if (!(dt > 0.0)) throw std::invalid_argument("Newmark step needs dt > 0");
   if (!solver_ || std::abs(dt - factorised_dt_) > 1e-12 * dt) factorise(dt);
+}
+
+void NewmarkIntegrator::step(double dt, Vec load) {
+  prepare(dt);
   const double a0 = 1.0 / (beta * dt * dt);
   const double a1 = gamma / (beta * dt);
   const double a2 = 1.0 / (beta * dt);

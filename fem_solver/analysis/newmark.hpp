@@ -25,6 +25,9 @@ class NewmarkIntegrator {
   /// Sets the state at the current time; the acceleration follows from the
   /// equation of motion with the load `load` (M is diagonal: no solve).
   void initialise(Vec displacement, Vec velocity, Vec load);
+  /// Assembles and factorises K_eff for steps of dt now (step() does it on
+  /// the first step of a new dt otherwise).
+  void prepare(double dt);
   /// Advances by dt to the load `load` at the end of the step.
   void step(double dt, Vec load);
 

@@ -59,6 +59,12 @@ void StructureSolver::set_external_loads(std::span<const double> forces) {
   system_.assembler().scatter(nodal, external_load_.get());
 }
 
+void StructureSolver::balance_acceleration() {
+  build_load(time_);
+  integrator_.initialise(integrator_.displacement(), integrator_.velocity(), load_.get());
+  refresh_state();
+}
+
 void StructureSolver::build_load(double t) {
   // F = F_constant + F_external - sum_k a_g,k(t) M iota_k
   const Eigen::Vector3d ground = motion_.acceleration(t);

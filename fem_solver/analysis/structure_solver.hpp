@@ -4,15 +4,17 @@
 //
 //   StructureSolver s(system, damping, constant_loads, ground_motion);
 //   s.set_interface(extract_interface(mesh, "wetted"));
-//   loop: s.set_external_loads(forces);  // 3 per interface vertex, N
+//   s.set_external_loads(forces_at_0); s.balance_acceleration();
+//   loop: s.set_external_loads(forces);  // 3 per interface vertex, N, at t + dt
 //         s.advance(dt);                  // Newmark, K_eff factorised once per dt
 //         s.interface_displacements(); s.interface_velocities();
 //
 // Equation of motion in the tank-base frame (METHOD.md §3): M a + C v + K u =
 // F_constant + F_external - M iota a_g(t), iota the rigid-body influence of
 // each ground direction, base nodes fixed; u, v, a relative to the base.
-// External loads are held over a step (the coupling ramps them between
-// windows by calling set_external_loads before each step).
+// set_external_loads gives the loads at the end of the next step (the
+// coupling ramps them over a window by calling it before each step, eq 17);
+// balance_acceleration makes the state at t consistent with the loads at t.
 #include <span>
 
 #include "common/excitation/ground_motion.hpp"
@@ -34,6 +36,14 @@ class StructureSolver {
   /// Forces on the interface vertices (3 per vertex, global axes); the same on
   /// every rank. Loads on supported DOFs go into the supports.
   void set_external_loads(std::span<const double> forces);
+  /// Makes the acceleration at the current time consistent with the loads now
+  /// set (M a = F - K u - C v): call once after giving the loads at t = 0, so
+  /// that a structure loaded from the start (the liquid's hydrostatic force)
+  /// does not see them as a jump over the first step.
+  void balance_acceleration();
+  /// Factorises K_eff for steps of dt ahead of the first advance (timed as
+  /// shell_factorise rather than inside the first shell_step).
+  void prepare(double dt) { integrator_.prepare(dt); }
   /// One Newmark step to t + dt; throws std::runtime_error naming the time if
   /// the solve fails.
   void advance(double dt);

@@ -31,8 +31,9 @@ ShellMesh generate(const CaseConfig& config, const std::string& type) {
     CylinderPatch c;
     c.radius = config.real("structure.mesh.radius");
     c.length = config.real("structure.mesh.length");
-    std::tie(c.phi_start, c.phi_end) = std::pair(range(config, "structure.mesh.phi_range")[0],
-                                                 range(config, "structure.mesh.phi_range")[1]);
+    const auto phi = range(config, "structure.mesh.phi_range");
+    c.phi_start = phi[0];
+    c.phi_end = phi[1];
     const auto n = divisions(config);
     c.divisions_phi = n[0];
     c.divisions_z = n[1];
@@ -77,7 +78,7 @@ ShellMesh read_structure_mesh(const CaseConfig& config) {
   } catch (const ConfigError&) {
     throw;
   } catch (const std::exception& e) {
-    throw config.error_at(type == "gmsh" ? "structure.mesh.file" : "structure.mesh.type", e.what());
+    throw config.error_at("structure.mesh.type", e.what());
   }
 }
 

@@ -124,6 +124,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   StructureSolver solver(system, damping, c.loads, motion);
   const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
   if (wetted) solver.set_interface(extract_interface(system.model().mesh, "wetted"));
+  solver.prepare(c.time_step);
   StructureOutput output(context, c, system);
   auto sample = [&]() {
     StructureTotals totals = support_totals(system.model().mesh, solver.support_forces());

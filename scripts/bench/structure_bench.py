@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""Structure benchmark: runs fem_solver on the paper's tank mesh and writes its figures.
+
+Usage: structure_bench.py --solver build/bin/fem_solver --output bench [--quick] [--ranks 1 2]
+
+The case is cases/tank3d_dry (0.60 m elements, ~10,000 nodes, ~56,000
+equations; --quick: the coarse twin) run as a dynamic analysis for a few
+Newmark steps, which times every stage of the program once:
+  shell_assemble   element matrices and PETSc assembly of K and the lumped mass
+  shell_modal      SLEPc shift-invert for the 20 lowest modes (one factorisation inside)
+  shell_factorise  Cholesky (MUMPS) of K_eff = K (1 + a1 beta) + M (a0 + a1 alpha)
+  shell_step       mean wall time of one Newmark step (two triangular solves, the
+                   right-hand side, the gathers for output)
+and the peak resident memory of the largest rank. Figures go to
+OUTPUT/structure_figures.json and a table to OUTPUT/structure_figures.md.
+Nothing is asserted: a benchmark reports, the reader judges.
+"""
+import argparse
+import json
+import pathlib
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+STEPS = 20
+
+
+def run(solver, case, ranks, folder):
+    settings = [f"end_time={STEPS * 0.001}", "structure.time_step=0.001", "output.field_interval=1000",
+                "output.probe_interval=1000"]
+    command = ["mpirun", "-np", str(ranks), "--oversubscribe", solver, str(ROOT / case), "--output", str(folder)]
+    for s in settings:
+        command += ["--set", s]
+    # RUSAGE_CHILDREN keeps the largest peak of any child so far: measure each run
+    # in a fresh interpreter, whose children are this run's processes only.
+    measure = ("import resource, subprocess, sys; r = subprocess.run(sys.argv[1:]); "
+               "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); sys.exit(r.returncode)")
+    start = time.monotonic()
+    result = subprocess.run([sys.executable, "-c", measure] + command, capture_output=True, text=True)
+    elapsed = time.monotonic() - start
+    if result.returncode != 0:
+        sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}")
+    peak_kib = int(result.stderr.strip().splitlines()[-1])
+    summary = json.loads((folder / "summary.json").read_text())
+    structure = summary["structure"]
+    stages = summary["programs"]["fem_solver"]["stages"]
+    step = stages["shell_step"]
+    return {
+        "ranks": ranks,
+        "nodes": structure["nodes"],
+        "quadrilaterals": structure["quadrilaterals"],
+        "triangles": structure["triangles"],
+        "equations": structure["equations"],
+        "assembly_s": stages["shell_assemble"]["seconds"],
+        "modal_20_modes_s": stages["shell_modal"]["seconds"],
+        # The first factorisation is the static/Newmark K_eff; the modal one is inside shell_modal.
+        "factorisation_s": stages["shell_factorise"]["seconds"] / stages["shell_factorise"]["calls"],
+        "newmark_step_s": step["seconds"] / step["calls"],
+        "steps": step["calls"],
+        "fundamental_period_s": summary["modal"]["fundamental_period_s"],
+        "peak_memory_largest_rank_MiB": peak_kib / 1024.0,
+        "wall_s": elapsed,
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--solver", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    args = parser.parse_args()
+    case = "cases/tank3d_dry_coarse/case.yaml" if args.quick else "cases/tank3d_dry/case.yaml"
+    output = pathlib.Path(args.output)
+    output.mkdir(parents=True, exist_ok=True)
+    rows = []
+    with tempfile.TemporaryDirectory() as scratch:
+        for ranks in args.ranks:
+            rows.append(run(str(pathlib.Path(args.solver).resolve()), case, ranks, pathlib.Path(scratch) / f"np{ranks}"))
+            print(json.dumps(rows[-1]))
+    (output / "structure_figures.json").write_text(json.dumps({"case": case, "runs": rows}, indent=2) + "\n")
+    columns = ["ranks", "nodes", "equations", "assembly_s", "factorisation_s", "newmark_step_s", "modal_20_modes_s",
+               "peak_memory_largest_rank_MiB", "fundamental_period_s"]
+    lines = [f"Structure benchmark: {case}", "", "| " + " | ".join(columns) + " |",
+             "|" + "---|" * len(columns)]
+    for r in rows:
+        lines.append("| " + " | ".join(f"{r[c]:.4g}" if isinstance(r[c], float) else str(r[c]) for c in columns) + " |")
+    (output / "structure_figures.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
