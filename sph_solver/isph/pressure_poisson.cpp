@@ -1,5 +1,7 @@
 #include "sph_solver/isph/pressure_poisson.hpp"
 
+#include "common/run/petsc_defaults.hpp"
+
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
@@ -14,31 +16,10 @@ void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")");
 }
 
-bool is_option_name(const std::string& token) {
-  return token.size() > 1 && token[0] == '-' && !(std::isdigit(static_cast<unsigned char>(token[1])) || token[1] == '.');
-}
-
 }  // namespace
 
-void apply_default_petsc_options(const std::string& options) {
-  std::istringstream in(options);
-  std::vector<std::string> tokens;
-  for (std::string token; in >> token;) tokens.push_back(token);
-  for (std::size_t k = 0; k < tokens.size(); ++k) {
-    const std::string& name = tokens[k];
-    if (!is_option_name(name))
-      throw std::invalid_argument("'" + name + "' is not a PETSc option name (options start with '-')");
-    std::string value;
-    if (k + 1 < tokens.size() && !is_option_name(tokens[k + 1])) value = tokens[++k];
-    PetscBool given = PETSC_FALSE;
-    check(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &given), "PetscOptionsHasName");
-    if (!given) check(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()),
-                      "PetscOptionsSetValue");
-  }
-}
-
 PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options) : comm_(comm) {
-  apply_default_petsc_options(case_options);
+  tankfsi::apply_default_petsc_options(case_options);
   check(KSPCreate(comm_, &ksp_), "KSPCreate");
   check(KSPSetOptionsPrefix(ksp_, "ppe_"), "KSPSetOptionsPrefix");
   check(KSPSetType(ksp_, KSPCG), "KSPSetType");

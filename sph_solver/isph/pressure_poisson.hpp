@@ -63,9 +63,5 @@ class PressurePoisson {
   std::vector<PetscInt> off_diagonal_nonzeros_;
 };
 
-/// Applies "-name value -flag ..." option text, each option unless already set
-/// (so the command line, read first, wins). Throws std::invalid_argument on text
-/// that does not start with an option name.
-void apply_default_petsc_options(const std::string& options);
 
 }  // namespace tankfsi::sph
