@@ -8,7 +8,7 @@ namespace tankfsi::fem {
 NewmarkIntegrator::NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping,
                                      SolverFactory factory)
     : k_(stiffness), m_(mass_diagonal), damping_(damping), factory_(std::move(factory)) {
-  for (PetscVector* v : {&u_, &v_, &a_, &rhs_, &work_, &work2_}) petsc_check(VecDuplicate(m_, v->out()), "VecDuplicate");
+  for (PetscVector* v : {&u_, &v_, &a_, &rhs_, &work_, &work2_, &combination_, &a_new_}) petsc_check(VecDuplicate(m_, v->out()), "VecDuplicate");
   for (PetscVector* v : {&u_, &v_, &a_}) petsc_check(VecSet(v->get(), 0.0), "VecSet");
 }
 
@@ -64,25 +64,21 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   petsc_check(VecPointwiseMult(rhs_.get(), m_, work_.get()), "VecPointwiseMult");
   petsc_check(VecAXPY(rhs_.get(), 1.0, load), "VecAXPY");
   if (damping_.alpha != 0.0 || damping_.beta != 0.0) {
-    PetscVector combination;
-    petsc_check(VecDuplicate(u_.get(), combination.out()), "VecDuplicate");
-    petsc_check(VecAXPBYPCZ(combination.get(), a1, a4, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
-    petsc_check(VecAXPY(combination.get(), a5, a_.get()), "VecAXPY");
-    damping_times(combination.get(), work_.get());
+    petsc_check(VecAXPBYPCZ(combination_.get(), a1, a4, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
+    petsc_check(VecAXPY(combination_.get(), a5, a_.get()), "VecAXPY");
+    damping_times(combination_.get(), work_.get());
     petsc_check(VecAXPY(rhs_.get(), 1.0, work_.get()), "VecAXPY");
   }
   // u_new from K_eff; then a_new = a0 (u_new - u) - a2 v - a3 a,
   // v_new = v + dt ((1 - gamma) a + gamma a_new).
   petsc_check(VecCopy(u_.get(), work_.get()), "VecCopy");
   solver_->solve(rhs_.get(), u_.get());
-  PetscVector a_new;
-  petsc_check(VecDuplicate(a_.get(), a_new.out()), "VecDuplicate");
-  petsc_check(VecWAXPY(a_new.get(), -1.0, work_.get(), u_.get()), "VecWAXPY");
-  petsc_check(VecScale(a_new.get(), a0), "VecScale");
-  petsc_check(VecAXPY(a_new.get(), -a2, v_.get()), "VecAXPY");
-  petsc_check(VecAXPY(a_new.get(), -a3, a_.get()), "VecAXPY");
-  petsc_check(VecAXPBYPCZ(v_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, a_.get(), a_new.get()), "VecAXPBYPCZ");
-  petsc_check(VecCopy(a_new.get(), a_.get()), "VecCopy");
+  petsc_check(VecWAXPY(a_new_.get(), -1.0, work_.get(), u_.get()), "VecWAXPY");
+  petsc_check(VecScale(a_new_.get(), a0), "VecScale");
+  petsc_check(VecAXPY(a_new_.get(), -a2, v_.get()), "VecAXPY");
+  petsc_check(VecAXPY(a_new_.get(), -a3, a_.get()), "VecAXPY");
+  petsc_check(VecAXPBYPCZ(v_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, a_.get(), a_new_.get()), "VecAXPBYPCZ");
+  petsc_check(VecCopy(a_new_.get(), a_.get()), "VecCopy");
   PetscReal norm = 0.0;
   petsc_check(VecNorm(u_.get(), NORM_INFINITY, &norm), "VecNorm");
   if (!std::isfinite(norm)) throw std::runtime_error("the Newmark step produced a non-finite displacement");

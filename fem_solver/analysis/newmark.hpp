@@ -52,7 +52,7 @@ class NewmarkIntegrator {
   PetscMatrix effective_;
   double factorised_dt_ = 0.0;
   int factorisations_ = 0;
-  PetscVector u_, v_, a_, rhs_, work_, work2_;
+  PetscVector u_, v_, a_, rhs_, work_, work2_, combination_, a_new_;  // created once: no allocation per step
 };
 
 }  // namespace tankfsi::fem

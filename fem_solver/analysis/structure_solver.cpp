@@ -90,9 +90,9 @@ void StructureSolver::advance(double dt) {
 
 void StructureSolver::refresh_state() {
   SystemAssembler& assembler = system_.assembler();
-  displacement_ = assembler.gather(integrator_.displacement(), 1.0);
-  velocity_ = assembler.gather(integrator_.velocity(), 0.0);
-  acceleration_ = assembler.gather(integrator_.acceleration(), 0.0);
+  assembler.gather(integrator_.displacement(), 1.0, displacement_);
+  assembler.gather(integrator_.velocity(), 0.0, velocity_);
+  assembler.gather(integrator_.acceleration(), 0.0, acceleration_);
 }
 
 std::vector<double> StructureSolver::interface_values(const NodalValues& values) const {

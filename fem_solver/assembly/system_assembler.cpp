@@ -153,12 +153,18 @@ void SystemAssembler::add_prescribed_lift(Vec target) const {
 }
 
 NodalValues SystemAssembler::gather(Vec free_values, double prescribed_scale) {
+  NodalValues out;
+  gather(free_values, prescribed_scale, out);
+  return out;
+}
+
+void SystemAssembler::gather(Vec free_values, double prescribed_scale, NodalValues& out) {
   if (!to_all_) petsc_check(VecScatterCreateToAll(free_values, to_all_.out(), gathered_.out()), "VecScatterCreateToAll");
   petsc_check(VecScatterBegin(to_all_.get(), free_values, gathered_.get(), INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
   petsc_check(VecScatterEnd(to_all_.get(), free_values, gathered_.get(), INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
   const PetscScalar* x = nullptr;
   petsc_check(VecGetArrayRead(gathered_.get(), &x), "VecGetArrayRead");
-  NodalValues out(dofs_per_node * model_.mesh.nodes.size(), 0.0);
+  out.resize(dofs_per_node * model_.mesh.nodes.size());
   for (std::size_t node = 0; node < model_.mesh.nodes.size(); ++node)
     for (int c = 0; c < dofs_per_node; ++c) {
       const PetscInt row = dofs_.equation(static_cast<int>(node), c);
@@ -166,7 +172,6 @@ NodalValues SystemAssembler::gather(Vec free_values, double prescribed_scale) {
           row >= 0 ? x[row] : prescribed_scale * dofs_.prescribed(static_cast<int>(node), c);
     }
   petsc_check(VecRestoreArrayRead(gathered_.get(), &x), "VecRestoreArrayRead");
-  return out;
 }
 
 Eigen::VectorXd SystemAssembler::element_values(std::size_t element, const NodalValues& values) const {

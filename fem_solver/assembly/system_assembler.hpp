@@ -44,6 +44,8 @@ class SystemAssembler {
   /// rank; constrained DOFs take `prescribed_scale` times their prescribed value
   /// (1 for displacements, 0 for velocities and accelerations).
   [[nodiscard]] NodalValues gather(Vec free_values, double prescribed_scale);
+  /// The same into `out`, reusing its storage (the per-step state of a dynamic run).
+  void gather(Vec free_values, double prescribed_scale, NodalValues& out);
   /// Writes nodal values (the owned free DOFs) into a distributed vector.
   void scatter(const NodalValues& values, Vec target) const;
   /// Forces the structure puts on its supports through its elements,

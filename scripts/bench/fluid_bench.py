@@ -20,13 +20,9 @@ Full set (a workstation or a cluster node; tens of minutes to hours):
 import argparse
 import json
 import pathlib
-import shlex
-import subprocess
-import sys
 import tempfile
-import time
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+from measured_run import measured_run
 
 FULL = [
     ("dam_break_2d", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.01", "end_time=2.0"]),
@@ -37,20 +33,7 @@ QUICK = [("dam_break_2d_quick", "cases/dam_break_2d/case.yaml", ["fluid.spacing=
 
 
 def run(solver, case, settings, ranks, folder):
-    command = ["mpirun", "-np", str(ranks), "--oversubscribe", solver, str(ROOT / case), "--output", str(folder)]
-    for s in settings + ["output.field_interval=1000"]:
-        command += ["--set", s]
-    # RUSAGE_CHILDREN keeps the largest peak of every child so far: measure each run
-    # in a fresh interpreter, whose children are this run's processes only.
-    measure = ("import resource, subprocess, sys; r = subprocess.run(sys.argv[1:]); "
-               "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); sys.exit(r.returncode)")
-    start = time.monotonic()
-    result = subprocess.run([sys.executable, "-c", measure] + command, capture_output=True, text=True)
-    elapsed = time.monotonic() - start
-    if result.returncode != 0:
-        sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}")
-    peak_kib = int(result.stderr.strip().splitlines()[-1])
-    summary = json.loads((folder / "summary.json").read_text())
+    summary, elapsed, peak_kib = measured_run(solver, case, settings + ["output.field_interval=1000"], ranks, folder)
     fluid = summary["fluid"]
     stages = summary["programs"]["sph_solver"]["stages"]
     total = sum(s["seconds"] for s in stages.values())

@@ -18,33 +18,18 @@ Nothing is asserted: a benchmark reports, the reader judges.
 import argparse
 import json
 import pathlib
-import shlex
-import subprocess
 import sys
 import tempfile
-import time
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+from measured_run import measured_run
+
 STEPS = 20
 
 
 def run(solver, case, ranks, folder):
     settings = [f"end_time={STEPS * 0.001}", "structure.time_step=0.001", "output.field_interval=1000",
                 "output.probe_interval=1000"]
-    command = ["mpirun", "-np", str(ranks), "--oversubscribe", solver, str(ROOT / case), "--output", str(folder)]
-    for s in settings:
-        command += ["--set", s]
-    # RUSAGE_CHILDREN keeps the largest peak of any child so far: measure each run
-    # in a fresh interpreter, whose children are this run's processes only.
-    measure = ("import resource, subprocess, sys; r = subprocess.run(sys.argv[1:]); "
-               "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); sys.exit(r.returncode)")
-    start = time.monotonic()
-    result = subprocess.run([sys.executable, "-c", measure] + command, capture_output=True, text=True)
-    elapsed = time.monotonic() - start
-    if result.returncode != 0:
-        sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}")
-    peak_kib = int(result.stderr.strip().splitlines()[-1])
-    summary = json.loads((folder / "summary.json").read_text())
+    summary, elapsed, peak_kib = measured_run(solver, case, settings, ranks, folder)
     structure = summary["structure"]
     stages = summary["programs"]["fem_solver"]["stages"]
     step = stages["shell_step"]
