@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
       {"fem_solver cases/shell_benchmarks/scordelis_lo/case.yaml --set structure.mesh.divisions=[8,8]",
        "mpirun -np 2 fem_solver cases/tank3d_dry/case.yaml", "fem_solver case.yaml -shell_ksp_type cg -shell_pc_type gamg",
        "fem_solver case.yaml -eps_monitor -log_view"},
-      {}};
+      {},
+      "structure"};
   return tankfsi::run_program(argc, argv, program, [](const tankfsi::ProgramInputs& inputs) -> tankfsi::ProgramWork {
     auto structure_case =
         std::make_shared<tankfsi::fem::StructureCase>(tankfsi::fem::read_structure_case(inputs.config));

@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
       "incompressible SPH fluid solver with triangle-patch walls (rigid walls when run alone).",
       {"sph_solver cases/dam_break_2d/case.yaml", "mpirun -np 2 sph_solver case.yaml --set fluid.spacing=0.02",
        "sph_solver case.yaml -ppe_ksp_monitor -log_view"},
-      {}};
+      {},
+      "fluid"};
   return tankfsi::run_program(argc, argv, program, [](const tankfsi::ProgramInputs& inputs) -> tankfsi::ProgramWork {
     auto fluid_case = std::make_shared<tankfsi::sph::FluidCase>(tankfsi::sph::read_fluid_case(inputs.config));
     std::shared_ptr<const tankfsi::GroundMotion> motion = tankfsi::make_ground_motion(inputs.config);

@@ -23,6 +23,7 @@ struct ProgramInfo {
   std::string purpose;      ///< one paragraph
   std::vector<std::string> examples;  ///< copy-pasteable command lines
   std::vector<std::string> flags;     ///< extra flags the program accepts: "--prepare  Writes ..."
+  std::string role;                   ///< role in a coupled job ("fluid", "structure"); empty: never couples
 };
 
 struct CommandLine {

@@ -15,6 +15,14 @@ std::vector<KeySpec> coupling_keys() {
       choice_key("coupling.first", {"fluid", "structure"},
                  "Which program advances a window first (sequential staggered and serial implicit).")
           .default_is("fluid").only_when("coupling.scheme", {"sequential_staggered", "implicit"}),
+      choice_key("coupling.implicit.mode", {"serial", "parallel"},
+                 "serial: the programs take turns within a window (the first as coupling.first); "
+                 "parallel: both advance the window at once and both interface fields are accelerated.")
+          .default_is("serial").only_when("coupling.scheme", implicit),
+      choice_key("coupling.implicit.on_nonconvergence", {"stop", "accept"},
+                 "What a window that has not converged in max_iterations does: stop the run with a "
+                 "diagnostic, or accept the last iterate and go on (counted in the summary).")
+          .default_is("stop").only_when("coupling.scheme", implicit),
       integer_key("coupling.implicit.max_iterations", "Most coupling iterations in one window.")
           .default_is("30").at_least(1).only_when("coupling.scheme", implicit),
       real_key("coupling.implicit.relative_tolerance",

@@ -2,11 +2,12 @@
 
 #include <petscsys.h>
 
+#include <iostream>
 #include <stdexcept>
 
 namespace tankfsi {
 
-MpiSession::MpiSession(const std::vector<std::string>& petsc_arguments) {
+MpiSession::MpiSession(const std::vector<std::string>& petsc_arguments, const std::string& role) {
   // PetscInitialize wants a mutable argv that outlives the call.
   static std::vector<std::string> storage;
   static std::vector<char*> argv;
@@ -17,13 +18,35 @@ MpiSession::MpiSession(const std::vector<std::string>& petsc_arguments) {
   argv.push_back(nullptr);
   int argc = static_cast<int>(storage.size());
   char** argv_pointer = argv.data();
+
+  MPI_Init(&argc, &argv_pointer);
+  MPI_Comm_size(MPI_COMM_WORLD, &job_size_);
+  if (role.empty()) {
+    MPI_Comm_dup(MPI_COMM_WORLD, &groups_.local);
+  } else {
+    try {
+      groups_ = split_program_groups(MPI_COMM_WORLD, role);
+    } catch (const std::exception& e) {
+      // Every rank reached the same verdict; one says it, all stop.
+      int world_rank = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+      if (world_rank == 0) std::cerr << "error: " << e.what() << std::endl;
+      MPI_Finalize();
+      std::exit(2);
+    }
+  }
+  PETSC_COMM_WORLD = groups_.local;
   if (PetscInitialize(&argc, &argv_pointer, nullptr, nullptr) != 0)
     throw std::runtime_error("PETSc failed to initialise");
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm_rank(groups_.local, &rank_);
+  MPI_Comm_size(groups_.local, &size_);
 }
 
-MpiSession::~MpiSession() { PetscFinalize(); }
+MpiSession::~MpiSession() {
+  PetscFinalize();
+  free_program_groups(groups_);
+  MPI_Finalize();
+}
 
 CommInfo comm_info(MPI_Comm comm) {
   CommInfo info;

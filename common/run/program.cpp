@@ -16,19 +16,27 @@ constexpr int exit_success = 0;
 constexpr int exit_failure = 1;
 
 // Ends the job from a failure that may have hit only some ranks: the others may
-// be waiting in a collective call and would never return.
+// be waiting in a collective call and would never return, and a partner
+// program would wait for data that never comes. MPI_Abort on the world ends
+// both programs of a coupled job.
 [[noreturn]] void abort_job(int status) {
   MPI_Abort(MPI_COMM_WORLD, status);
   std::exit(status);
 }
 
+int job_size() {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
 int run_work(const CommandLine& cli, const CaseConfig& config, const ProgramInfo& program, const ProgramSetup& setup,
-             bool with_folder, MPI_Comm comm) {
+             bool with_folder, MPI_Comm comm, MPI_Comm partner) {
   const CommInfo info = comm_info(comm);
   Logger log(comm, program.name, parse_log_level(config.text("output.log_level")));
   // Set-up errors are input errors met identically on every rank (the same files
   // read the same way): they return normally, nothing written.
-  const ProgramWork work = setup(ProgramInputs{cli, config, log, comm});
+  const ProgramWork work = setup(ProgramInputs{cli, config, log, comm, partner});
   std::optional<RunFolder> folder;
   if (with_folder) {
     try {
@@ -51,18 +59,18 @@ int run_work(const CommandLine& cli, const CaseConfig& config, const ProgramInfo
   }
 
   StageTimers timers;
-  ProgramContext context{cli, config, folder ? &*folder : nullptr, log, timers, comm};
+  ProgramContext context{cli, config, folder ? &*folder : nullptr, log, timers, comm, partner};
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json results;
   try {
     results = work(context);
   } catch (const ConfigError& e) {
     log.error(e.what());
-    if (info.size > 1) abort_job(exit_status_bad_input);
+    if (job_size() > 1) abort_job(exit_status_bad_input);
     return exit_status_bad_input;
   } catch (const std::exception& e) {
     log.error(e.what());
-    if (info.size > 1) abort_job(exit_failure);
+    if (job_size() > 1) abort_job(exit_failure);
     return exit_failure;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -91,12 +99,18 @@ int run_program(int argc, char** argv, const ProgramInfo& program, const Program
   } catch (const ConfigError& e) {
     command_line_error = e.what();
   }
-  MpiSession session(cli ? cli->petsc_arguments : std::vector<std::string>{argc > 0 ? argv[0] : program.name});
+  MpiSession session(cli ? cli->petsc_arguments : std::vector<std::string>{argc > 0 ? argv[0] : program.name},
+                     program.role);
   const bool printer = session.rank() == 0;
 
+  // In a coupled job the partner would wait for this program: bad input ends both.
+  const auto bad_input = [&session] {
+    if (session.partner() != MPI_COMM_NULL) abort_job(exit_status_bad_input);
+    return exit_status_bad_input;
+  };
   if (!command_line_error.empty()) {
     if (printer) std::cerr << program.name << ": error: " << command_line_error << "\n";
-    return exit_status_bad_input;
+    return bad_input();
   }
   if (cli->help) {
     if (printer) std::cout << help_text(program, case_schema());
@@ -114,13 +128,13 @@ int run_program(int argc, char** argv, const ProgramInfo& program, const Program
     // Every rank reads and validates: the same file gives the same verdict everywhere.
     const CaseConfig config = CaseConfig::load(cli->case_file, overrides, case_schema());
     const bool with_folder = !writes_run_folder || writes_run_folder(*cli);
-    return run_work(*cli, config, program, setup, with_folder, session.world());
+    return run_work(*cli, config, program, setup, with_folder, session.world(), session.partner());
   } catch (const ConfigError& e) {
-    if (printer) std::cerr << program.name << ": error: " << e.what() << "\n";
-    return exit_status_bad_input;
+    if (printer) std::cerr << program.name << ": error: " << e.what() << std::endl;
+    return bad_input();
   } catch (const std::exception& e) {
     std::cerr << program.name << ": error (rank " << session.rank() << "): " << e.what() << "\n";
-    if (session.size() > 1) abort_job(exit_failure);
+    if (session.job_size() > 1) abort_job(exit_failure);
     return exit_failure;
   }
 }

@@ -29,6 +29,7 @@ struct ProgramInputs {
   const CaseConfig& config;
   Logger& log;
   MPI_Comm comm;
+  MPI_Comm partner;  ///< inter-communicator to the partner program, MPI_COMM_NULL alone
 };
 
 /// What a program's work sees: the inputs, the run folder and the stage timers.
@@ -38,7 +39,8 @@ struct ProgramContext {
   const RunFolder* folder;  ///< null when the program was asked not to write one
   Logger& log;
   StageTimers& timers;
-  MPI_Comm comm;
+  MPI_Comm comm;     ///< this program's ranks
+  MPI_Comm partner;  ///< inter-communicator to the partner program, MPI_COMM_NULL alone
 };
 
 /// The program's work once its run folder exists; returns its results for

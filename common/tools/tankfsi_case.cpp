@@ -61,7 +61,8 @@ int main(int argc, char** argv) {
       "checks a tankfsi case file and, with --prepare, writes its run folder and the ground motion it applies.",
       {"tankfsi_case cases/tank3d_fixed_roof_coarse/case.yaml",
        "tankfsi_case case.yaml --set excitation.time_scale=0.5 --prepare --output runs/check"},
-      {"--prepare         write the run folder with the resolved case and probes/ground_acceleration.csv"}};
+      {"--prepare         write the run folder with the resolved case and probes/ground_acceleration.csv"},
+      ""};  // never couples
   return tankfsi::run_program(
       argc, argv, program,
       [](const tankfsi::ProgramInputs& inputs) -> tankfsi::ProgramWork {

@@ -7,7 +7,7 @@
 using namespace tankfsi;
 
 namespace {
-const ProgramInfo program{"prog", "does things", {}, {"--prepare  writes"}};
+const ProgramInfo program{"prog", "does things", {}, {"--prepare  writes"}, ""};
 
 CommandLine parse(std::vector<const char*> arguments) {
   arguments.insert(arguments.begin(), "prog");

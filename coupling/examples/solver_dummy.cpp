@@ -1,0 +1,209 @@
+// solver_dummy: either side of a coupled job, with the two-mass oscillator
+// (two_mass_oscillator.hpp) for physics, through the C++ Participant. It
+// tests the coupling without the real solvers and shows the participant loop.
+//
+//   mpirun -np 2 solver_dummy --side fluid case.yaml : -np 1 solver_dummy --side structure case.yaml
+//   mpirun -np 1 solver_dummy --side fluid case.yaml --vertices 100000 : -np 1 solver_dummy --side structure case.yaml --vertices 100000
+//
+// Options: --vertices N (interface size, default 12); --check TOL (exit 1 if
+// the error against the closed form exceeds TOL); --fail-at-window K (throw
+// at window K, to see the job end with this side's message); --kill-at-window
+// K (die by SIGKILL at window K); --constant-force FX (fluid side: instead of
+// the oscillator, a constant force FX along x on every vertex, for a structure
+// partner's step response, as modal_structure --check-step does). Prints one
+// summary line per side.
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include "common/config/case_config.hpp"
+#include "common/config/case_schema.hpp"
+#include "common/parallel/program_groups.hpp"
+#include "coupling/examples/two_mass_oscillator.hpp"
+#include "coupling/participant.hpp"
+
+using namespace tankfsi;
+using namespace tankfsi::coupling;
+
+namespace {
+
+struct Options {
+  Side side = Side::fluid;
+  std::string case_file;
+  int vertices = 12;
+  double check = -1;
+  int fail_at = -1;
+  int kill_at = -1;
+  double constant_force = std::nan("");
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  bool side_given = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--side") {
+      const std::string s = value();
+      if (s != "fluid" && s != "structure") throw std::invalid_argument("--side must be fluid or structure");
+      o.side = s == "fluid" ? Side::fluid : Side::structure;
+      side_given = true;
+    } else if (a == "--vertices") o.vertices = std::stoi(value());
+    else if (a == "--check") o.check = std::stod(value());
+    else if (a == "--fail-at-window") o.fail_at = std::stoi(value());
+    else if (a == "--kill-at-window") o.kill_at = std::stoi(value());
+    else if (a == "--constant-force") o.constant_force = std::stod(value());
+    else if (a.size() > 5 && a.substr(a.size() - 5) == ".yaml") o.case_file = a;
+    else throw std::invalid_argument("unknown argument " + a);
+  }
+  if (!side_given || o.case_file.empty())
+    throw std::invalid_argument("usage: solver_dummy --side fluid|structure CASE.yaml [--vertices N] [--check TOL] "
+                                "[--fail-at-window K] [--kill-at-window K]");
+  return o;
+}
+
+int run(const Options& o, const ProgramGroups& groups) {
+  const auto config = CaseConfig::load(o.case_file, {}, case_schema());
+  const CouplingSettings settings = read_coupling_settings(config);
+  Participant p(o.side, settings, groups.local, groups.partner, case_fingerprints(config));
+  int rank = 0, size = 1;
+  MPI_Comm_rank(groups.local, &rank);
+  MPI_Comm_size(groups.local, &size);
+  const auto wall_start = std::chrono::steady_clock::now();
+
+  // 1. The structure declares its share of a strip of vertices (round robin).
+  if (o.side == Side::structure) {
+    std::vector<std::int64_t> ids;
+    std::vector<double> xyz;
+    std::vector<std::array<std::int64_t, 3>> triangles;
+    for (int k = rank; k < o.vertices; k += size) {
+      ids.push_back(k);
+      xyz.insert(xyz.end(), {0.01 * k, 0.01 * (k % 2), 0.0});
+      if (k + 2 < o.vertices) triangles.push_back({k, k + 1, k + 2});
+    }
+    p.set_interface(ids, xyz, triangles);
+  }
+  p.exchange_interface();
+
+  // 2. The oscillators and the initial data.
+  const examples::OscillatorParameters base;
+  const auto& ids = p.interface_mesh().ids;
+  const std::size_t n = ids.size();
+  std::vector<examples::OscillatorParameters> params(n);
+  std::vector<examples::NewmarkDof> dofs(n);
+  std::vector<bool> mine(n, true);
+  std::vector<double> values(3 * n, 0.0), start(3 * n), end(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    params[k] = base.at_vertex(ids[k]);
+    if (o.side == Side::fluid) {
+      mine[k] = static_cast<int>(k % static_cast<std::size_t>(size)) == rank;
+      dofs[k] = {params[k].m1, params[k].k1 + params[k].kc};
+      dofs[k].start(params[k].x1_initial, 0.0, 0.0);
+      values[3 * k] = mine[k] ? (std::isnan(o.constant_force) ? params[k].kc * params[k].x1_initial : o.constant_force) : 0.0;
+    } else {
+      dofs[k] = {params[k].m2, params[k].k2};
+      dofs[k].start(0.0, 0.0, params[k].kc * params[k].x1_initial);
+    }
+  }
+  p.write(o.side == Side::fluid ? Field::force : Field::displacement, values);
+  p.initialize();
+
+  // 3. The participant loop.
+  const double own_step = settings.time_window / (o.side == Side::fluid ? 3.0 : 4.0);
+  auto saved = dofs;
+  double max_error = 0.0;
+  double solver_seconds = 0.0;
+  while (p.is_ongoing()) {
+    if (p.requires_writing_checkpoint()) saved = dofs;
+    const double dt = std::min(own_step, p.max_time_step());
+    const auto solve_start = std::chrono::steady_clock::now();
+    if (o.side == Side::fluid && !std::isnan(o.constant_force)) {
+      // values keep the constant force written as initial data.
+    } else if (o.side == Side::fluid) {
+      p.read(Field::displacement, 0.0, start);
+      p.read(Field::displacement, dt, end);
+      for (std::size_t k = 0; k < n; ++k) {
+        const double before = dofs[k].u;
+        dofs[k].step(dt, params[k].kc * end[3 * k]);
+        values[3 * k] = mine[k] ? params[k].kc * (0.5 * (before + dofs[k].u) - 0.5 * (start[3 * k] + end[3 * k])) : 0.0;
+      }
+    } else {
+      p.read(Field::force, dt, end);
+      for (std::size_t k = 0; k < n; ++k) {
+        dofs[k].step(dt, end[3 * k]);
+        values[3 * k] = dofs[k].u;
+      }
+    }
+    solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
+    p.write(o.side == Side::fluid ? Field::force : Field::displacement, values);
+    p.advance(dt);
+    if (p.requires_reading_checkpoint()) dofs = saved;
+    if (p.window_completed()) {
+      const int window = p.window_reports().back().window;
+      if (window == o.fail_at) throw std::runtime_error("failing on purpose at window " + std::to_string(window));
+      if (window == o.kill_at) std::raise(SIGKILL);
+      for (std::size_t k = 0; k < n && std::isnan(o.constant_force); ++k) {
+        if (!mine[k]) continue;
+        const Eigen::Vector2d exact = examples::oscillator_exact(params[k], p.time());
+        max_error = std::max(max_error, std::abs(dofs[k].u - exact[o.side == Side::fluid ? 0 : 1]));
+      }
+    }
+  }
+  p.finalize();
+
+  // 4. Summary: error, iterations, and the share of wall time in the coupling.
+  double error = 0.0;
+  MPI_Allreduce(&max_error, &error, 1, MPI_DOUBLE, MPI_MAX, groups.local);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const auto timings = p.timings();
+  long long iterations = 0;
+  for (const auto& r : p.window_reports()) iterations += r.iterations;
+  const auto windows = static_cast<long long>(p.window_reports().size());
+  if (rank == 0)
+    std::printf("solver_dummy (%s, %d ranks): %lld windows, %d vertices, error %.3e, %.2f iterations per window, "
+                "wall %.3f s, solver %.3f s, coupling wait %.3f s, coupling work %.3f s, %.3f ms per window\n",
+                side_name(o.side), size, windows, o.vertices, error, windows ? double(iterations) / double(windows) : 0.0,
+                wall, solver_seconds, timings.wait, timings.work, windows ? 1e3 * wall / double(windows) : 0.0);
+  if (o.check >= 0 && !(error <= o.check)) {
+    if (rank == 0) std::fprintf(stderr, "solver_dummy (%s): error %.3e above --check %.3e\n", side_name(o.side), error, o.check);
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  Options options;
+  try {
+    options = parse(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "solver_dummy: " << e.what() << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 2);
+  }
+  ProgramGroups groups;
+  int status = 0;
+  try {
+    groups = split_program_groups(MPI_COMM_WORLD, side_name(options.side));
+    status = run(options, groups);
+  } catch (const std::exception& e) {
+    // A failure on one side must end the partner too: abort the whole job.
+    std::cerr << "solver_dummy (" << side_name(options.side) << "): error: " << e.what() << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  free_program_groups(groups);
+  MPI_Finalize();
+  return status;
+}

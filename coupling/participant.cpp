@@ -1,0 +1,627 @@
+#include "coupling/participant.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "coupling/acceleration/acceleration.hpp"
+#include "coupling/interface/interface_exchange.hpp"
+#include "coupling/partnership/partner_link.hpp"
+#include "coupling/schemes/schedule.hpp"
+#include "coupling/time/window_interpolation.hpp"
+
+namespace tankfsi::coupling {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Window ends within this fraction of its length count as reached: sub-steps
+// that add up to dt_c in floating point land a few ulps short or long.
+constexpr double window_end_tolerance = 1e-9;
+
+// A window's verdict in the control record (PROTOCOL.md, "Control").
+constexpr std::int32_t verdict_repeat = 0;
+constexpr std::int32_t verdict_accept = 1;
+constexpr std::int32_t verdict_stop = -1;
+
+std::string describe_mismatch(const std::map<std::string, std::string>& mine,
+                              const std::map<std::string, std::string>& theirs, const std::string& prefix,
+                              Side side) {
+  std::string text;
+  std::map<std::string, std::string> keys;
+  for (const auto& [k, v] : mine) keys[k];
+  for (const auto& [k, v] : theirs) keys[k];
+  for (const auto& [key, unused] : keys) {
+    if (key.rfind(prefix, 0) != 0) continue;
+    const auto a = mine.find(key);
+    const auto b = theirs.find(key);
+    const std::string va = a == mine.end() ? "(none)" : a->second;
+    const std::string vb = b == theirs.end() ? "(none)" : b->second;
+    if (va == vb) continue;
+    text += "\n  " + key.substr(prefix.size()) + ": " + side_name(side) + " " + va + ", " + side_name(other(side)) +
+            " " + vb;
+  }
+  return text;
+}
+
+double norm(MPI_Comm comm, std::span<const double> v) { return std::sqrt(weighted_dot(comm, v, v, {})); }
+
+std::array<double, 3> component_sums(MPI_Comm comm, std::span<const double> values, double factor) {
+  std::array<double, 3> local{};
+  for (std::size_t i = 0; i < values.size(); ++i) local[i % 3] += values[i] * factor;
+  std::array<double, 3> global{};
+  MPI_Allreduce(local.data(), global.data(), 3, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+
+}  // namespace
+
+class Participant::Impl {
+ public:
+  Impl(Side side, const CouplingSettings& settings, MPI_Comm local, MPI_Comm partner,
+       std::map<std::string, std::string> fingerprints)
+      : side_(side), settings_(settings), link_(local, partner, side, settings.timeout),
+        fingerprints_(std::move(fingerprints)), controller_(controls(settings, side)) {
+    settings_.check();
+  }
+
+  void set_interface(const std::vector<std::int64_t>& ids, const std::vector<double>& coordinates,
+                     const std::vector<std::array<std::int64_t, 3>>& triangles) {
+    if (side_ != Side::structure) throw CouplingError("set_interface: only the structure side declares the interface");
+    if (initialized_) throw CouplingError("set_interface: after initialize()");
+    declared_ids_ = ids;
+    declared_coordinates_ = coordinates;
+    declared_triangles_ = triangles;
+    declared_ = true;
+  }
+
+  void exchange_interface();
+  void initialize();
+  void advance(double dt);
+  void read(Field field, double relative_dt, std::span<double> values) const;
+  void write(Field field, std::span<const double> values);
+  void finalize();
+
+  [[nodiscard]] const InterfaceMesh& mesh() const {
+    require_exchanged("interface_mesh");
+    return exchange_->mesh();
+  }
+  [[nodiscard]] std::size_t value_count() const {
+    require_exchanged("value_count");
+    return side_ == Side::fluid ? 3 * exchange_->global_vertex_count() : exchange_->part_size();
+  }
+  [[nodiscard]] bool is_ongoing() const {
+    return window_start_ < settings_.end_time - window_end_tolerance * settings_.time_window;
+  }
+  [[nodiscard]] double time() const { return window_start_ + elapsed_; }
+  [[nodiscard]] double max_time_step() const { return window_length() - elapsed_; }
+
+  bool take(bool& flag) {
+    const bool was = flag;
+    flag = false;
+    return was;
+  }
+
+  Side side_;
+  CouplingSettings settings_;
+  PartnerLink link_;
+  std::map<std::string, std::string> fingerprints_;
+  bool controller_;
+  std::unique_ptr<InterfaceExchange> exchange_;
+  std::unique_ptr<Acceleration> acceleration_;
+
+  bool declared_ = false;
+  std::vector<std::int64_t> declared_ids_;
+  std::vector<double> declared_coordinates_;
+  std::vector<std::array<std::int64_t, 3>> declared_triangles_;
+
+  bool initialized_ = false;
+  bool finalized_ = false;
+  int window_ = 1;
+  int iteration_ = 0;
+  double window_start_ = 0.0;
+  double elapsed_ = 0.0;
+
+  // Fluid: forces of the step to come, their window average, the wall path.
+  std::vector<double> step_force_;
+  bool step_force_written_ = false;
+  WindowAverage force_average_;
+  DisplacementPath path_;
+  // Structure: displacements written, the ramp of the force read.
+  std::vector<double> displacement_;
+  bool displacement_written_ = false;
+  LoadRamp ramp_;
+  std::vector<double> force_input_;  ///< the F̄ the ramp aims at (eq 17)
+  // Initial data written before initialize().
+  std::vector<double> initial_values_;
+
+  // Implicit controller: the input it sent (or, parallel, also its own), the
+  // converged outputs of the last two windows (for the next window's guess).
+  std::vector<double> sent_input_;
+  std::vector<double> previous_output_;
+  std::vector<double> last_output_;
+
+  bool write_checkpoint_ = false;
+  bool read_checkpoint_ = false;
+  bool window_completed_ = false;
+  std::vector<WindowReport> reports_;
+  double work_seconds_ = 0.0;
+
+ private:
+  void require_exchanged(const char* what) const {
+    if (!exchange_) throw CouplingError(std::string(what) + ": call exchange_interface() or initialize() first");
+  }
+  void require_initialized(const char* what) const {
+    if (!initialized_) throw CouplingError(std::string(what) + ": call initialize() first");
+  }
+  [[nodiscard]] double window_length() const {
+    return std::min(settings_.time_window, settings_.end_time - window_start_);
+  }
+  [[nodiscard]] bool last_window() const {
+    return window_start_ + window_length() >= settings_.end_time - window_end_tolerance * settings_.time_window;
+  }
+  [[nodiscard]] int my_tag() const { return side_ == Side::fluid ? tag_force : tag_displacement; }
+  [[nodiscard]] int partner_tag() const { return side_ == Side::fluid ? tag_displacement : tag_force; }
+  [[nodiscard]] std::string partner_data_name() const {
+    return side_ == Side::fluid ? "displacements" : "forces";
+  }
+
+  void handshake();
+  /// This program's output of the window in its distributed part: fluid, the
+  /// force average on its slice; structure, its displacements.
+  [[nodiscard]] std::vector<double> output_part();
+  /// Sends a part as the message of the end of `window` (0: initialize) and
+  /// the current iteration, with the controller's verdict.
+  void send_part(const std::vector<double>& part, int window, std::int32_t verdict);
+  struct Received {
+    Control control;
+    std::vector<double> part;
+  };
+  Received receive_part(int expected_window, int expected_iteration, const std::string& what);
+  /// The input the program reads from, made from a received part: fluid, the
+  /// whole displacement array; structure, its forces.
+  void aim(const std::vector<double>& part);
+  void complete_window();
+  void complete_explicit();
+  void complete_follower();
+  void complete_controller();
+  void accept(const std::vector<double>& next_input_part, int iterations, bool converged, double residual_d,
+              double residual_f);
+  void repeat(const std::vector<double>& next_input_part);
+  [[nodiscard]] std::vector<double> predicted(const std::vector<double>& last, const std::vector<double>& previous) const;
+};
+
+// ---- initialisation -------------------------------------------------------
+
+void Participant::Impl::handshake() {
+  std::map<std::string, std::string> hello;
+  for (const auto& [key, value] : settings_.as_map()) hello["setting." + key] = value;
+  for (const auto& [key, value] : fingerprints_) hello["case." + key] = value;
+  const auto theirs = link_.exchange_hello(hello);
+
+  std::string problems;
+  if (theirs.count("protocol") == 0 || theirs.at("protocol") != "tankfsi-coupling")
+    throw CouplingError(link_.partner_name() + " does not speak the tankfsi coupling protocol");
+  if (theirs.at("protocol.major") != std::to_string(protocol_major))
+    problems += "\n  protocol version: " + std::string(side_name(side_)) + " " + std::to_string(protocol_major) + "." +
+                std::to_string(protocol_minor) + ", partner " + theirs.at("protocol.major") + "." +
+                theirs.at("protocol.minor");
+  if (theirs.at("side") == side_name(side_))
+    problems += "\n  both programs are on the " + std::string(side_name(side_)) + " side";
+  std::map<std::string, std::string> mine = hello;
+  problems += describe_mismatch(mine, theirs, "setting.", side_);
+  const bool both_fingerprinted = !fingerprints_.empty() && std::any_of(theirs.begin(), theirs.end(), [](const auto& entry) {
+                         return entry.first.rfind("case.", 0) == 0;
+                       });
+  if (both_fingerprinted) {
+    const std::string sections = describe_mismatch(mine, theirs, "case.", side_);
+    if (!sections.empty()) {
+      std::string names;
+      std::istringstream lines(sections);
+      std::string line;
+      while (std::getline(lines, line))
+        if (const auto colon = line.find(':'); colon != std::string::npos)
+          names += (names.empty() ? "" : ", ") + line.substr(2, colon - 2);
+      problems += "\n  the programs read different cases (sections that differ: " + names + ")";
+    }
+  }
+  if (!problems.empty())
+    throw CouplingError("the " + std::string(side_name(side_)) + " and " + side_name(other(side_)) +
+                        " programs do not agree:" + problems);
+}
+
+void Participant::Impl::exchange_interface() {
+  if (exchange_) throw CouplingError("exchange_interface() called twice");
+  if (side_ == Side::structure && !declared_)
+    throw CouplingError("the structure side must call set_interface() before the interface is exchanged");
+  const auto start = Clock::now();
+  const double wait_before = link_.wait_seconds();
+  handshake();
+  if (side_ == Side::structure)
+    exchange_ = std::make_unique<InterfaceExchange>(link_, declared_ids_, declared_coordinates_, declared_triangles_);
+  else
+    exchange_ = std::make_unique<InterfaceExchange>(link_);
+  work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);
+}
+
+void Participant::Impl::initialize() {
+  if (initialized_) throw CouplingError("initialize() called twice");
+  if (!exchange_) exchange_interface();
+  const auto start = Clock::now();
+  const double wait_before = link_.wait_seconds();
+  initialized_ = true;
+  const std::size_t count = value_count();
+  if (!initial_values_.empty() && initial_values_.size() != count)
+    throw CouplingError("initial data of " + std::to_string(initial_values_.size()) + " values, expected " +
+                        std::to_string(count));
+  if (initial_values_.empty()) initial_values_.assign(count, 0.0);
+  if (side_ == Side::fluid) {
+    step_force_.assign(count, 0.0);
+    force_average_ = WindowAverage(count);
+  }
+  if (controller_) acceleration_ = make_acceleration(settings_, link_.local());
+
+  // Initial data: each program sends its initial output, receives the
+  // partner's, and starts its own input from it.
+  if (side_ == Side::fluid) {
+    const std::vector<double> slice = exchange_->reduce_to_slice(initial_values_);
+    send_part(slice, 0, verdict_accept);
+    last_output_ = slice;
+  } else {
+    displacement_ = initial_values_;
+    send_part(displacement_, 0, verdict_accept);
+    last_output_ = displacement_;
+  }
+  const Received initial = receive_part(0, 0, "initial " + partner_data_name());
+  if (side_ == Side::fluid) {
+    path_ = DisplacementPath(exchange_->gather_slices(initial.part));
+  } else {
+    ramp_ = LoadRamp(initial.part);
+    force_input_ = initial.part;
+  }
+  previous_output_ = last_output_;
+
+  if (!settings_.is_implicit()) {
+    aim(initial.part);
+    if (!lags(settings_, side_)) aim(receive_part(1, 0, partner_data_name() + " of window 1").part);
+  } else if (!controller_) {
+    aim(receive_part(0, 0, "the first coupling input").part);
+  } else {
+    // The first guess of the follower's input is its initial value; in
+    // parallel mode the controller's own input starts from the partner's.
+    const bool parallel = settings_.implicit_mode == ImplicitMode::parallel;
+    sent_input_ = parallel ? displacement_ : last_output_;
+    if (parallel) sent_input_.insert(sent_input_.end(), initial.part.begin(), initial.part.end());
+    const std::size_t follower_size = parallel ? displacement_.size() : sent_input_.size();
+    send_part(std::vector<double>(sent_input_.begin(), sent_input_.begin() + static_cast<long>(follower_size)), 0,
+              verdict_accept);
+    if (parallel)
+      aim(initial.part);
+    else
+      aim(receive_part(1, 0, partner_data_name() + " of window 1").part);
+    last_output_ = parallel ? sent_input_ : last_output_;
+    previous_output_ = last_output_;
+  }
+  write_checkpoint_ = settings_.is_implicit();
+  work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);
+}
+
+// ---- messages -------------------------------------------------------------
+
+std::vector<double> Participant::Impl::output_part() {
+  if (side_ == Side::fluid) return exchange_->reduce_to_slice(force_average_.average(window_length()));
+  if (!displacement_written_)
+    throw CouplingError("window " + std::to_string(window_) +
+                        " ended without write(displacement) since its start: the structure must write its "
+                        "displacements at least once per window");
+  return displacement_;
+}
+
+void Participant::Impl::send_part(const std::vector<double>& part, int window, std::int32_t verdict) {
+  Control control;
+  control.window = window;
+  control.iteration = window == 0 ? 0 : iteration_;
+  control.converged = verdict;
+  control.time = window_start_ + elapsed_;
+  link_.send_control(control);
+  exchange_->post_sends(part, my_tag());
+}
+
+Participant::Impl::Received Participant::Impl::receive_part(int expected_window, int expected_iteration,
+                                                            const std::string& what) {
+  Received r;
+  r.control = link_.receive_control(what);
+  if (r.control.window != expected_window || r.control.iteration != expected_iteration)
+    throw CouplingError("protocol out of step: the " + std::string(side_name(side_)) + " program expected " + what +
+                        " of window " + std::to_string(expected_window) + " iteration " +
+                        std::to_string(expected_iteration) + " and received window " +
+                        std::to_string(r.control.window) + " iteration " + std::to_string(r.control.iteration) +
+                        " (do both programs use the same coupling settings?)");
+  r.part = exchange_->receive_part(partner_tag(), what);
+  return r;
+}
+
+void Participant::Impl::aim(const std::vector<double>& part) {
+  if (side_ == Side::fluid) {
+    path_.aim(exchange_->gather_slices(part));
+  } else {
+    force_input_ = part;
+    ramp_.aim(part, settings_.ramp_chi);
+  }
+}
+
+// ---- windows --------------------------------------------------------------
+
+void Participant::Impl::advance(double dt) {
+  require_initialized("advance");
+  if (finalized_) throw CouplingError("advance: after finalize()");
+  if (!is_ongoing()) throw CouplingError("advance: the coupled run has ended (t = " + std::to_string(time()) + " s)");
+  const double remaining = max_time_step();
+  if (!(dt > 0) || dt > remaining * (1 + window_end_tolerance) + window_end_tolerance * settings_.time_window)
+    throw CouplingError("advance(" + std::to_string(dt) + " s): the step must be positive and at most max_time_step() = " +
+                        std::to_string(remaining) + " s");
+  if (side_ == Side::fluid) {
+    if (!step_force_written_)
+      throw CouplingError("advance: the fluid must write(force) before each step (the force over that step, eq 16)");
+    force_average_.add(step_force_, dt);
+    step_force_written_ = false;
+  }
+  window_completed_ = false;
+  elapsed_ += dt;
+  if (elapsed_ >= window_length() * (1 - window_end_tolerance)) {
+    elapsed_ = window_length();
+    const auto start = Clock::now();
+    const double wait_before = link_.wait_seconds();
+    complete_window();
+    work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);
+  }
+}
+
+void Participant::Impl::complete_window() {
+  if (!settings_.is_implicit())
+    complete_explicit();
+  else if (controller_)
+    complete_controller();
+  else
+    complete_follower();
+}
+
+void Participant::Impl::complete_explicit() {
+  const bool last = last_window();
+  if (sends_output(settings_, side_, last)) send_part(output_part(), window_, verdict_accept);
+  std::vector<double> next;
+  if (receives_input(last)) {
+    const int from_window = lags(settings_, side_) ? window_ : window_ + 1;
+    next = receive_part(from_window, 0, partner_data_name() + " of window " + std::to_string(from_window)).part;
+  }
+  accept(next, 1, true, -1, -1);
+}
+
+void Participant::Impl::complete_follower() {
+  send_part(output_part(), window_, verdict_accept);
+  const Received verdict = receive_part(window_, iteration_, "the verdict on window " + std::to_string(window_));
+  if (verdict.control.converged == verdict_stop)
+    throw CouplingError(link_.partner_name() + " stopped the run: window " + std::to_string(window_) +
+                        " did not converge in " + std::to_string(settings_.max_iterations) +
+                        " coupling iterations (coupling.implicit.max_iterations)");
+  if (verdict.control.converged == verdict_repeat)
+    repeat(verdict.part);
+  else
+    accept(last_window() ? std::vector<double>{} : verdict.part, iteration_ + 1, true, -1, -1);
+}
+
+std::vector<double> Participant::Impl::predicted(const std::vector<double>& last,
+                                                 const std::vector<double>& previous) const {
+  // Linear extrapolation of the converged outputs of the last two windows.
+  std::vector<double> guess(last.size());
+  for (std::size_t i = 0; i < guess.size(); ++i) guess[i] = 2 * last[i] - previous[i];
+  return guess;
+}
+
+void Participant::Impl::complete_controller() {
+  const bool parallel = settings_.implicit_mode == ImplicitMode::parallel;
+  const bool last = last_window();
+  // x̂: this program's output; in parallel mode followed by the partner's.
+  std::vector<double> output = output_part();
+  const std::size_t own_size = output.size();
+  if (parallel) {
+    const Received forces = receive_part(window_, iteration_, "forces of window " + std::to_string(window_));
+    output.insert(output.end(), forces.part.begin(), forces.part.end());
+  }
+  // Residuals of the displacement and force fields, relative to the output.
+  const auto field_residual = [&](std::size_t begin, std::size_t end, double& relative) {
+    std::vector<double> r(end - begin);
+    for (std::size_t i = begin; i < end; ++i) r[i - begin] = output[i] - sent_input_[i];
+    const double r_norm = norm(link_.local(), r);
+    const double x_norm = norm(link_.local(), std::span<const double>(output).subspan(begin, end - begin));
+    relative = x_norm > 0 ? r_norm / x_norm : r_norm;
+    return r_norm <= std::max(settings_.absolute_tolerance, settings_.relative_tolerance * x_norm);
+  };
+  double residual_d = -1, residual_f = -1;
+  bool converged = true;
+  std::vector<double> weights;
+  if (parallel) {
+    converged = field_residual(0, own_size, residual_d);
+    converged = field_residual(own_size, output.size(), residual_f) && converged;
+    // Each field weighted by the inverse of its size, so that metres and
+    // newtons count alike in the least-squares problem.
+    const double d_scale = norm(link_.local(), std::span<const double>(output).first(own_size));
+    const double f_scale = norm(link_.local(), std::span<const double>(output).subspan(own_size));
+    weights.assign(output.size(), 1.0);
+    for (std::size_t i = 0; i < output.size(); ++i) {
+      const double scale = i < own_size ? d_scale : f_scale;
+      weights[i] = scale > 0 ? 1.0 / scale : 1.0;
+    }
+  } else {
+    converged = field_residual(0, own_size, side_ == Side::structure ? residual_d : residual_f);
+  }
+  const bool out_of_iterations = !converged && iteration_ + 1 >= settings_.max_iterations;
+  if (out_of_iterations && settings_.stop_on_nonconvergence) {
+    send_part(std::vector<double>(parallel ? own_size : output.size(), 0.0), window_, verdict_stop);
+    throw CouplingError("window " + std::to_string(window_) + " (t = " + std::to_string(window_start_) + " to " +
+                        std::to_string(window_start_ + window_length()) + " s) did not converge in " +
+                        std::to_string(settings_.max_iterations) +
+                        " coupling iterations (coupling.implicit.max_iterations); relative residual " +
+                        std::to_string(std::max(residual_d, residual_f)));
+  }
+  const bool accepted = converged || out_of_iterations;
+  std::vector<double> next;
+  if (accepted) {
+    acceleration_->window_converged();
+    previous_output_ = last_output_;
+    last_output_ = output;
+    next = predicted(last_output_, previous_output_);
+  } else {
+    next = acceleration_->next_input(sent_input_, output, weights);
+  }
+  // The follower's part of the next input goes to it with the verdict.
+  const std::size_t follower_size = parallel ? own_size : next.size();
+  send_part(std::vector<double>(next.begin(), next.begin() + static_cast<long>(follower_size)), window_,
+            accepted ? verdict_accept : verdict_repeat);
+  const int iterations = iteration_ + 1;
+  std::vector<double> own_input;
+  if (parallel) {
+    own_input.assign(next.begin() + static_cast<long>(own_size), next.end());
+  } else if (!(accepted && last)) {
+    own_input = receive_part(accepted ? window_ + 1 : window_, accepted ? 0 : iteration_ + 1,
+                             partner_data_name() + " of the next coupling iteration")
+                    .part;
+  }
+  sent_input_ = std::move(next);
+  if (accepted)
+    accept(last ? std::vector<double>{} : own_input, iterations, converged, residual_d, residual_f);
+  else
+    repeat(own_input);
+}
+
+void Participant::Impl::accept(const std::vector<double>& next_input_part, int iterations, bool converged,
+                               double residual_d, double residual_f) {
+  WindowReport report;
+  report.window = window_;
+  report.start_time = window_start_;
+  report.end_time = window_start_ + window_length();
+  report.iterations = iterations;
+  report.converged = converged;
+  report.displacement_residual = residual_d;
+  report.force_residual = residual_f;
+  if (side_ == Side::structure) {
+    report.impulse_given = component_sums(link_.local(), force_input_, window_length());
+    report.impulse_applied = component_sums(link_.local(), ramp_.mean(), window_length());
+  }
+  reports_.push_back(report);
+
+  window_start_ += window_length();
+  elapsed_ = 0.0;
+  ++window_;
+  iteration_ = 0;
+  if (side_ == Side::fluid) {
+    path_.next_window();
+    force_average_.reset();
+  } else {
+    ramp_.next_window();
+    displacement_written_ = false;
+  }
+  if (!next_input_part.empty()) aim(next_input_part);
+  window_completed_ = true;
+  write_checkpoint_ = settings_.is_implicit() && is_ongoing();
+}
+
+void Participant::Impl::repeat(const std::vector<double>& next_input_part) {
+  elapsed_ = 0.0;
+  ++iteration_;
+  if (side_ == Side::fluid)
+    force_average_.reset();
+  else
+    displacement_written_ = false;
+  aim(next_input_part);
+  window_completed_ = false;
+  read_checkpoint_ = true;
+}
+
+// ---- data -----------------------------------------------------------------
+
+void Participant::Impl::read(Field field, double relative_dt, std::span<double> values) const {
+  require_initialized("read");
+  const bool fluid_field = field == Field::displacement || field == Field::velocity;
+  if (fluid_field != (side_ == Side::fluid))
+    throw CouplingError(std::string("read: the ") + side_name(side_) + " side does not read " +
+                        (field == Field::force ? "forces" : "displacements or velocities"));
+  if (values.size() != value_count())
+    throw CouplingError("read: array of " + std::to_string(values.size()) + " values, expected " +
+                        std::to_string(value_count()));
+  const double fraction = std::clamp((elapsed_ + relative_dt) / window_length(), 0.0, 1.0);
+  std::vector<double> v = field == Field::force          ? ramp_.at(fraction)
+                          : field == Field::displacement ? path_.at(fraction)
+                                                         : path_.velocity(window_length());
+  std::copy(v.begin(), v.end(), values.begin());
+}
+
+void Participant::Impl::write(Field field, std::span<const double> values) {
+  const Field expected = side_ == Side::fluid ? Field::force : Field::displacement;
+  if (field != expected)
+    throw CouplingError(std::string("write: the ") + side_name(side_) + " side writes " +
+                        (expected == Field::force ? "forces" : "displacements"));
+  if (!initialized_) {  // initial data
+    if (side_ == Side::structure ? !declared_ : !exchange_)
+      throw CouplingError("write: initial data before the interface is known (set_interface / exchange_interface)");
+    initial_values_.assign(values.begin(), values.end());
+    return;
+  }
+  if (values.size() != value_count())
+    throw CouplingError("write: array of " + std::to_string(values.size()) + " values, expected " +
+                        std::to_string(value_count()));
+  if (side_ == Side::fluid) {
+    step_force_.assign(values.begin(), values.end());
+    step_force_written_ = true;
+  } else {
+    displacement_.assign(values.begin(), values.end());
+    displacement_written_ = true;
+  }
+}
+
+void Participant::Impl::finalize() {
+  if (finalized_ || !initialized_) return;
+  finalized_ = true;
+  exchange_->finish_sends("the partner to take the last interface data");
+  Control done;
+  done.kind = static_cast<std::int32_t>(ControlKind::finalize);
+  done.window = window_ - 1;
+  done.time = time();
+  link_.send_control(done);
+  link_.receive_finalize();
+}
+
+// ---- the public class ---------------------------------------------------------
+
+Participant::Participant(Side side, const CouplingSettings& settings, MPI_Comm local, MPI_Comm partner,
+                         std::map<std::string, std::string> fingerprints)
+    : impl_(std::make_unique<Impl>(side, settings, local, partner, std::move(fingerprints))) {}
+Participant::~Participant() = default;
+
+void Participant::set_interface(const std::vector<std::int64_t>& ids, const std::vector<double>& coordinates,
+                                const std::vector<std::array<std::int64_t, 3>>& triangles) {
+  impl_->set_interface(ids, coordinates, triangles);
+}
+void Participant::exchange_interface() { impl_->exchange_interface(); }
+void Participant::initialize() { impl_->initialize(); }
+const InterfaceMesh& Participant::interface_mesh() const { return impl_->mesh(); }
+std::size_t Participant::value_count() const { return impl_->value_count(); }
+bool Participant::is_ongoing() const { return impl_->is_ongoing(); }
+double Participant::time() const { return impl_->time(); }
+double Participant::max_time_step() const { return impl_->max_time_step(); }
+void Participant::read(Field field, double relative_dt, std::span<double> values) const {
+  impl_->read(field, relative_dt, values);
+}
+void Participant::write(Field field, std::span<const double> values) { impl_->write(field, values); }
+void Participant::advance(double dt) { impl_->advance(dt); }
+bool Participant::requires_writing_checkpoint() { return impl_->take(impl_->write_checkpoint_); }
+bool Participant::requires_reading_checkpoint() { return impl_->take(impl_->read_checkpoint_); }
+bool Participant::window_completed() const { return impl_->window_completed_; }
+const std::vector<WindowReport>& Participant::window_reports() const { return impl_->reports_; }
+CouplingTimings Participant::timings() const { return {impl_->link_.wait_seconds(), impl_->work_seconds_}; }
+void Participant::finalize() { impl_->finalize(); }
+
+}  // namespace tankfsi::coupling

@@ -1,0 +1,138 @@
+#pragma once
+// Participant: one program's end of the coupling (METHOD.md §4, DESIGN.md
+// "Participant API"). Modelled on preCICE's Participant; it knows nothing of
+// SPH or shells, only nodal arrays on the interface mesh.
+//
+//   Participant p(Side::structure, settings, local_comm, partner_comm, fingerprints);
+//   p.set_interface(ids, coordinates, triangles);   // structure side: the wetted surface
+//   p.exchange_interface();                         // handshake, mesh
+//   p.write(Field::displacement, initial);          // optional initial data
+//   p.initialize();
+//   while (p.is_ongoing()) {
+//     if (p.requires_writing_checkpoint()) save_state();
+//     const double dt = std::min(my_dt, p.max_time_step());
+//     p.read(Field::force, dt, load);                 // the load at the end of the step
+//     solve(dt);
+//     p.write(Field::displacement, u);
+//     p.advance(dt);
+//     if (p.requires_reading_checkpoint()) load_state();
+//   }
+//   p.finalize();
+//
+// Sides and fields (PROTOCOL.md, "Fields"):
+//   fluid:     writes force (N, the force of the fluid on each interface
+//              vertex; each rank its partial sums over the whole mesh, summed
+//              over the fluid's ranks), every step before advance(dt);
+//              reads displacement (m) and velocity (m/s) of every vertex.
+//   structure: declares its vertices; writes displacement (m, relative to the
+//              tank base) of its vertices, at least at the end of each window;
+//              reads force on its vertices.
+// Time (eqs 16-18): the fluid's forces are averaged over the window (eq 16);
+// the structure reads them ramped (eq 17, chi); the fluid reads a wall moving
+// with constant velocity over the window (eq 18).
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "coupling/interface/interface_mesh.hpp"
+#include "coupling/settings.hpp"
+
+namespace tankfsi::coupling {
+
+enum class Field { force, displacement, velocity };
+
+/// What one coupling window did (the structure side knows the impulses).
+struct WindowReport {
+  int window = 0;  ///< 1-based
+  double start_time = 0.0;
+  double end_time = 0.0;
+  int iterations = 1;
+  bool converged = true;            ///< false: accepted after max_iterations
+  double displacement_residual = -1;  ///< relative, last iteration; -1 where not measured
+  double force_residual = -1;         ///< relative, last iteration; -1 where not measured
+  /// Structure side: impulse the fluid gave for the force applied in this
+  /// window (dt_c F̄, summed over vertices) and impulse the structure applied
+  /// (integral of the ramp), N s, global axes; zero on the fluid side.
+  std::array<double, 3> impulse_given{};
+  std::array<double, 3> impulse_applied{};
+};
+
+/// Time this rank spent in the coupling (s): waiting for the partner, and
+/// working (reductions, packing, acceleration).
+struct CouplingTimings {
+  double wait = 0.0;
+  double work = 0.0;
+};
+
+class Participant {
+ public:
+  /// `local`: this program's ranks; `partner`: the inter-communicator to the
+  /// other program (common/parallel/program_groups.hpp). `fingerprints`: the
+  /// case_fingerprints() of the case this program read, compared with the
+  /// partner's at the handshake (empty: not compared).
+  Participant(Side side, const CouplingSettings& settings, MPI_Comm local, MPI_Comm partner,
+              std::map<std::string, std::string> fingerprints = {});
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  /// Structure side, before initialize(): this rank's interface vertices
+  /// (global ids, 3 coordinates each) and triangles (three vertex ids, any of
+  /// them declared on any rank). Each vertex is declared on exactly one rank.
+  void set_interface(const std::vector<std::int64_t>& ids, const std::vector<double>& coordinates,
+                     const std::vector<std::array<std::int64_t, 3>>& triangles);
+
+  /// Collective over both programs: handshake (protocol, settings, case) and
+  /// the interface mesh, after which interface_mesh() is known (the fluid
+  /// side needs it to write its initial forces). initialize() calls it if
+  /// the program did not. Throws CouplingError on any mismatch, on both sides.
+  void exchange_interface();
+  /// Collective over both programs: exchanges the initial data (whatever was
+  /// written since exchange_interface(); zero otherwise) and starts window 1.
+  void initialize();
+
+  /// Fluid: the whole interface mesh, vertices in ascending id order (the
+  /// order of every array it reads and writes); structure: its own vertices
+  /// in declaration order.
+  [[nodiscard]] const InterfaceMesh& interface_mesh() const;
+  /// Values (3 per vertex) in the arrays this rank reads and writes.
+  [[nodiscard]] std::size_t value_count() const;
+
+  [[nodiscard]] bool is_ongoing() const;
+  [[nodiscard]] double time() const;
+  /// How far this program may advance before the window ends.
+  [[nodiscard]] double max_time_step() const;
+  /// The field at `relative_dt` after the current time, within the window.
+  void read(Field field, double relative_dt, std::span<double> values) const;
+  void write(Field field, std::span<const double> values);
+  /// Advances the coupling time by dt (at most max_time_step()); at the end of
+  /// a window exchanges data as the scheme says, which may wait for the partner.
+  void advance(double dt);
+
+  /// Implicit coupling: true once at the start of each window (save your state).
+  [[nodiscard]] bool requires_writing_checkpoint();
+  /// Implicit coupling: true once after a window that must be repeated
+  /// (restore your state; time() is back at the window start).
+  [[nodiscard]] bool requires_reading_checkpoint();
+  /// True when the last advance() ended a window that was accepted.
+  [[nodiscard]] bool window_completed() const;
+  /// Reports of every accepted window so far.
+  [[nodiscard]] const std::vector<WindowReport>& window_reports() const;
+  [[nodiscard]] CouplingTimings timings() const;
+
+  /// Collective over both programs: tells the partner this program is done.
+  void finalize();
+
+  class Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tankfsi::coupling
