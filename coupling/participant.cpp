@@ -553,10 +553,12 @@ void Participant::Impl::read(Field field, double relative_dt, std::span<double> 
     throw CouplingError("read: array of " + std::to_string(values.size()) + " values, expected " +
                         std::to_string(value_count()));
   const double fraction = std::clamp((elapsed_ + relative_dt) / window_length(), 0.0, 1.0);
-  std::vector<double> v = field == Field::force          ? ramp_.at(fraction)
-                          : field == Field::displacement ? path_.at(fraction)
-                                                         : path_.velocity(window_length());
-  std::copy(v.begin(), v.end(), values.begin());
+  if (field == Field::force)
+    ramp_.at(fraction, values);
+  else if (field == Field::displacement)
+    path_.at(fraction, values);
+  else
+    path_.velocity(window_length(), values);
 }
 
 void Participant::Impl::write(Field field, std::span<const double> values) {

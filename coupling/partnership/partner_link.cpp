@@ -60,7 +60,10 @@ void PartnerLink::wait(std::vector<MPI_Request>& requests, const std::string& wh
   if (requests.empty()) return;
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration<double>(timeout_);
-  auto pause = std::chrono::microseconds(0);
+  // First yield the core (an oversubscribed partner gets it at once), then
+  // sleep in short naps: a partner that computes for long costs no CPU, and
+  // one that answers soon is noticed within 0.2 ms.
+  long polls = 0;
   int done = 0;
   for (;;) {
     MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE);
@@ -72,9 +75,10 @@ void PartnerLink::wait(std::vector<MPI_Request>& requests, const std::string& wh
                           " from " + partner_name() + " (rank " + std::to_string(rank_) + " of the " +
                           side_name(side_) + " program)");
     }
-    // Short waits spin; longer ones sleep, up to 1 ms, to give the cores away.
-    if (pause.count() > 0) std::this_thread::sleep_for(pause);
-    pause = std::min(std::chrono::microseconds(1000), pause + std::chrono::microseconds(pause.count() / 2 + 1));
+    if (++polls < 2000)
+      std::this_thread::yield();
+    else
+      std::this_thread::sleep_for(std::chrono::microseconds(polls < 4000 ? 20 : 200));
   }
   requests.clear();
   wait_seconds_ += std::chrono::duration<double>(Clock::now() - start).count();

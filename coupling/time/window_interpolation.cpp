@@ -13,9 +13,14 @@ void require_size(std::size_t got, std::size_t expected, const char* what) {
                                 std::to_string(expected));
 }
 
+void lerp(const std::vector<double>& a, const std::vector<double>& b, double fraction, std::span<double> out) {
+  require_size(out.size(), a.size(), "interpolated values");
+  for (std::size_t i = 0; i < a.size(); ++i) out[i] = a[i] + (b[i] - a[i]) * fraction;
+}
+
 std::vector<double> lerp(const std::vector<double>& a, const std::vector<double>& b, double fraction) {
   std::vector<double> v(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) v[i] = a[i] + (b[i] - a[i]) * fraction;
+  lerp(a, b, fraction, v);
   return v;
 }
 
@@ -44,15 +49,22 @@ void LoadRamp::aim(std::span<const double> average, double chi) {
 }
 
 std::vector<double> LoadRamp::at(double fraction) const { return lerp(start_, end_, fraction); }
+void LoadRamp::at(double fraction, std::span<double> out) const { lerp(start_, end_, fraction, out); }
 
 std::vector<double> LoadRamp::mean() const { return lerp(start_, end_, 0.5); }
 
 std::vector<double> DisplacementPath::at(double fraction) const { return lerp(start_, target_, fraction); }
+void DisplacementPath::at(double fraction, std::span<double> out) const { lerp(start_, target_, fraction, out); }
 
 std::vector<double> DisplacementPath::velocity(double window_length) const {
   std::vector<double> v(start_.size());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = (target_[i] - start_[i]) / window_length;
+  velocity(window_length, v);
   return v;
+}
+
+void DisplacementPath::velocity(double window_length, std::span<double> out) const {
+  require_size(out.size(), start_.size(), "wall velocity");
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = (target_[i] - start_[i]) / window_length;
 }
 
 }  // namespace tankfsi::coupling

@@ -38,6 +38,7 @@ class LoadRamp {
   void aim(std::span<const double> average, double chi);
   /// The load at `fraction` (0 = window start, 1 = end) of the window.
   [[nodiscard]] std::vector<double> at(double fraction) const;
+  void at(double fraction, std::span<double> out) const;
   /// The window's impulse per value divided by its length: (L_start + L_end)/2.
   [[nodiscard]] std::vector<double> mean() const;
   /// The next window starts where this one ended.
@@ -57,8 +58,10 @@ class DisplacementPath {
   explicit DisplacementPath(std::vector<double> initial = {}) : start_(initial), target_(std::move(initial)) {}
   void aim(std::vector<double> target) { target_ = std::move(target); }
   [[nodiscard]] std::vector<double> at(double fraction) const;
+  void at(double fraction, std::span<double> out) const;
   /// (target - start) / window_length: the wall velocity of the window.
   [[nodiscard]] std::vector<double> velocity(double window_length) const;
+  void velocity(double window_length, std::span<double> out) const;
   void next_window() { start_ = target_; }
   [[nodiscard]] const std::vector<double>& start() const { return start_; }
   [[nodiscard]] const std::vector<double>& target() const { return target_; }
