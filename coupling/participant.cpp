@@ -8,6 +8,7 @@
 
 #include "coupling/acceleration/acceleration.hpp"
 #include "coupling/interface/interface_exchange.hpp"
+#include "coupling/mapping/nearest_projection.hpp"
 #include "coupling/partnership/partner_link.hpp"
 #include "coupling/schemes/schedule.hpp"
 #include "coupling/time/window_interpolation.hpp"
@@ -91,7 +92,22 @@ class Participant::Impl {
   }
   [[nodiscard]] std::size_t value_count() const {
     require_exchanged("value_count");
-    return side_ == Side::fluid ? 3 * exchange_->global_vertex_count() : exchange_->part_size();
+    if (side_ == Side::structure) return exchange_->part_size();
+    return own_points_.empty() ? 3 * exchange_->global_vertex_count() : own_points_.size();
+  }
+  void set_own_vertices(std::vector<double> coordinates) {
+    if (side_ != Side::fluid) throw CouplingError("set_own_vertices: only the fluid side maps onto the partner's mesh");
+    if (initialized_) throw CouplingError("set_own_vertices: after initialize()");
+    if (coordinates.empty() || coordinates.size() % 3 != 0)
+      throw CouplingError("set_own_vertices: 3 coordinates per vertex expected, got " + std::to_string(coordinates.size()));
+    own_points_ = std::move(coordinates);
+  }
+  /// Fluid: own values -> the whole mesh's (partial) values.
+  [[nodiscard]] std::vector<double> to_mesh(std::span<const double> own) const {
+    if (!mapping_) return {own.begin(), own.end()};
+    std::vector<double> on_mesh(3 * exchange_->global_vertex_count());
+    mapping_->conservative(own, on_mesh);
+    return on_mesh;
   }
   [[nodiscard]] bool is_ongoing() const {
     return window_start_ < settings_.end_time - window_end_tolerance * settings_.time_window;
@@ -137,6 +153,10 @@ class Participant::Impl {
   std::vector<double> force_input_;  ///< the F̄ the ramp aims at (eq 17)
   // Initial data written before initialize().
   std::vector<double> initial_values_;
+  // Fluid with its own wall vertices: the mapping onto the partner's mesh.
+  std::vector<double> own_points_;
+  std::unique_ptr<NearestProjection> mapping_;
+  mutable std::vector<double> mesh_scratch_;
 
   // Implicit controller: the input it sent (or, parallel, also its own), the
   // converged outputs of the last two windows (for the next window's guess).
@@ -259,8 +279,11 @@ void Participant::Impl::initialize() {
                         std::to_string(count));
   if (initial_values_.empty()) initial_values_.assign(count, 0.0);
   if (side_ == Side::fluid) {
-    step_force_.assign(count, 0.0);
-    force_average_ = WindowAverage(count);
+    const std::size_t mesh_count = 3 * exchange_->global_vertex_count();
+    if (!own_points_.empty()) mapping_ = std::make_unique<NearestProjection>(exchange_->mesh(), own_points_);
+    initial_values_ = to_mesh(initial_values_);
+    step_force_.assign(mesh_count, 0.0);
+    force_average_ = WindowAverage(mesh_count);
   }
   if (controller_) acceleration_ = make_acceleration(settings_, link_.local());
 
@@ -553,12 +576,20 @@ void Participant::Impl::read(Field field, double relative_dt, std::span<double> 
     throw CouplingError("read: array of " + std::to_string(values.size()) + " values, expected " +
                         std::to_string(value_count()));
   const double fraction = std::clamp((elapsed_ + relative_dt) / window_length(), 0.0, 1.0);
-  if (field == Field::force)
+  if (field == Field::force) {
     ramp_.at(fraction, values);
-  else if (field == Field::displacement)
-    path_.at(fraction, values);
+    return;
+  }
+  std::span<double> on_mesh = values;
+  if (mapping_) {
+    mesh_scratch_.resize(3 * exchange_->global_vertex_count());
+    on_mesh = mesh_scratch_;
+  }
+  if (field == Field::displacement)
+    path_.at(fraction, on_mesh);
   else
-    path_.velocity(window_length(), values);
+    path_.velocity(window_length(), on_mesh);
+  if (mapping_) mapping_->consistent(on_mesh, values);
 }
 
 void Participant::Impl::write(Field field, std::span<const double> values) {
@@ -576,7 +607,10 @@ void Participant::Impl::write(Field field, std::span<const double> values) {
     throw CouplingError("write: array of " + std::to_string(values.size()) + " values, expected " +
                         std::to_string(value_count()));
   if (side_ == Side::fluid) {
-    step_force_.assign(values.begin(), values.end());
+    if (mapping_)
+      mapping_->conservative(values, step_force_);
+    else
+      step_force_.assign(values.begin(), values.end());
     step_force_written_ = true;
   } else {
     displacement_.assign(values.begin(), values.end());
@@ -607,6 +641,8 @@ void Participant::set_interface(const std::vector<std::int64_t>& ids, const std:
                                 const std::vector<std::array<std::int64_t, 3>>& triangles) {
   impl_->set_interface(ids, coordinates, triangles);
 }
+void Participant::set_own_vertices(std::vector<double> coordinates) { impl_->set_own_vertices(std::move(coordinates)); }
+double Participant::max_mapping_distance() const { return impl_->mapping_ ? impl_->mapping_->max_distance() : 0.0; }
 void Participant::exchange_interface() { impl_->exchange_interface(); }
 void Participant::initialize() { impl_->initialize(); }
 const InterfaceMesh& Participant::interface_mesh() const { return impl_->mesh(); }

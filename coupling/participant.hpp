@@ -88,6 +88,15 @@ class Participant {
   void set_interface(const std::vector<std::int64_t>& ids, const std::vector<double>& coordinates,
                      const std::vector<std::array<std::int64_t, 3>>& triangles);
 
+  /// Fluid side, before initialize(): this rank's own wall vertices (3
+  /// coordinates each, the same on every fluid rank), when the fluid does not
+  /// use the structure's mesh as its wall. Its arrays then hold 3 values per
+  /// own vertex, mapped by nearest projection onto the structure's triangles
+  /// (consistent for displacements, conservative for forces).
+  void set_own_vertices(std::vector<double> coordinates);
+  /// With own vertices: the largest distance of one from the structure's mesh (m).
+  [[nodiscard]] double max_mapping_distance() const;
+
   /// Collective over both programs: handshake (protocol, settings, case) and
   /// the interface mesh, after which interface_mesh() is known (the fluid
   /// side needs it to write its initial forces). initialize() calls it if
@@ -101,7 +110,8 @@ class Participant {
   /// order of every array it reads and writes); structure: its own vertices
   /// in declaration order.
   [[nodiscard]] const InterfaceMesh& interface_mesh() const;
-  /// Values (3 per vertex) in the arrays this rank reads and writes.
+  /// Values (3 per vertex) in the arrays this rank reads and writes (fluid
+  /// with own vertices: 3 per own vertex).
   [[nodiscard]] std::size_t value_count() const;
 
   [[nodiscard]] bool is_ongoing() const;
