@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build git pkg-config
+  build-essential gfortran cmake ninja-build git pkg-config
   openmpi-bin libopenmpi-dev
   libeigen3-dev
   petsc-dev slepc-dev            # PETSc 3.18 (hypre, MUMPS inside) and SLEPc
