@@ -128,6 +128,11 @@ TEST_CASE("impulse balance: chi = 2 to round-off, chi = 1 lags by half a window"
           scale = std::max(scale, std::abs(w.impulse_given[0]));
           cumulative += w.impulse_applied[0] - w.impulse_given[0];
         }
+        int rank = 0;
+        MPI_Comm_rank(split.local, &rank);
+        if (rank == 0 && fluid_ranks == 1)
+          std::printf("impulse, %s, chi %.0f: largest window difference %.2e, sum %.2e, of the largest window impulse %.2e\n",
+                      scheme == Scheme::implicit ? "implicit" : "parallel staggered", chi, worst, cumulative, scale);
         CAPTURE(fluid_ranks, static_cast<int>(scheme), chi, worst, scale, cumulative);
         REQUIRE(scale > 0);
         if (chi == 2.0) {
