@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "common/io/text_fields.hpp"
+
 namespace tankfsi::gmsh {
 
 namespace {
@@ -45,22 +47,7 @@ constexpr std::array<ElementType, 20> element_types{{
     {13, "13-node pyramid"},
 }};
 
-std::string_view trimmed(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  std::size_t begin = 0;
-  while ((begin = line.find_first_not_of(" \t\r", begin)) != std::string_view::npos) {
-    const std::size_t end = std::min(line.find_first_of(" \t\r", begin), line.size());
-    tokens.push_back(line.substr(begin, end - begin));
-    begin = end;
-  }
-  return tokens;
-}
+constexpr std::array<const char*, 4> entity_kinds{"point", "curve", "surface", "volume"};
 
 // The file's lines with a cursor; errors name the file and the last line read.
 class Lines {
@@ -82,7 +69,7 @@ class Lines {
 
   /// The next line split into at least `minimum` tokens.
   std::vector<std::string_view> tokens(std::string_view inside, std::size_t minimum, const char* what) {
-    auto words = split(next(inside));
+    auto words = split_words(next(inside));
     if (words.size() < minimum)
       throw error(std::string("expected ") + what + " (" + std::to_string(minimum) + " numbers), found " +
                   std::to_string(words.size()));
@@ -155,7 +142,7 @@ void read_physical_names(Lines& in, MshFile& msh) {
   const std::int64_t n = non_negative(in.tokens("PhysicalNames", 1, "the number of names")[0], in, "number of names");
   for (std::int64_t k = 0; k < n; ++k) {
     const std::string_view line = in.next("PhysicalNames");
-    const auto words = split(line);
+    const auto words = split_words(line);
     const auto open = line.find('"');
     const auto close = line.rfind('"');
     if (words.size() < 3 || open == std::string_view::npos || close == open)
@@ -173,17 +160,16 @@ void read_entities(Lines& in, MshFile& msh) {
   const auto header = in.tokens("Entities", 4, "the numbers of points, curves, surfaces and volumes");
   std::array<std::int64_t, 4> n{};
   for (std::size_t d = 0; d < 4; ++d) n[d] = non_negative(header[d], in, "number of entities");
-  static constexpr std::array<const char*, 4> kinds{"point", "curve", "surface", "volume"};
   for (int dimension = 0; dimension < 4; ++dimension) {
     const std::size_t count_at = dimension == 0 ? 4 : 7;
     for (std::int64_t k = 0; k < n[static_cast<std::size_t>(dimension)]; ++k) {
-      const std::string what = std::string("a ") + kinds[static_cast<std::size_t>(dimension)] +
+      const std::string what = std::string("a ") + entity_kinds[static_cast<std::size_t>(dimension)] +
                                (dimension == 0 ? ": tag, x y z" : ": tag, bounding box") + ", number of physical tags";
       const auto words = in.tokens("Entities", count_at + 1, what.c_str());
       const int tag = small_integer(words[0], in, "entity tag");
       const std::int64_t groups = non_negative(words[count_at], in, "number of physical tags");
       if (words.size() < count_at + 1 + static_cast<std::size_t>(groups))
-        throw in.error(std::string(kinds[static_cast<std::size_t>(dimension)]) + " " + std::string(words[0]) +
+        throw in.error(std::string(entity_kinds[static_cast<std::size_t>(dimension)]) + " " + std::string(words[0]) +
                        " announces " + std::to_string(groups) + " physical tags but the line ends before them");
       std::vector<int>& tags = msh.entity_groups[{dimension, tag}];
       for (std::int64_t g = 0; g < groups; ++g)
@@ -194,14 +180,33 @@ void read_entities(Lines& in, MshFile& msh) {
   in.expect_end("Entities");
 }
 
+// The header of $Nodes and $Elements: number of blocks, number of items, minimum and
+// maximum tag; the item count is checked against the blocks' at the end.
+struct BlockedSection {
+  std::int64_t blocks = 0;
+  std::int64_t total = 0;
+};
+
+BlockedSection read_blocked_header(Lines& in, std::string_view section, const char* items) {
+  const std::string what = std::string("blocks, ") + items + ", minimum and maximum tag";
+  const auto header = in.tokens(section, 4, what.c_str());
+  return {non_negative(header[0], in, "number of blocks"), non_negative(header[1], in, "number of items")};
+}
+
+void expect_total(Lines& in, std::string_view section, const char* items, const BlockedSection& header,
+                  std::int64_t found) {
+  if (found != header.total)
+    throw in.error("the $" + std::string(section) + " header announces " + std::to_string(header.total) + " " + items +
+                   " but its blocks hold " + std::to_string(found));
+  in.expect_end(section);
+}
+
 // Blocks of: entity dim, entity tag, parametric, count; the node tags one per line; then
 // their coordinates x y z (plus dim parametric coordinates when parametric).
 void read_nodes(Lines& in, MshFile& msh) {
-  const auto header = in.tokens("Nodes", 4, "blocks, nodes, minimum and maximum node tag");
-  const std::int64_t blocks = non_negative(header[0], in, "number of blocks");
-  const std::int64_t total = non_negative(header[1], in, "number of nodes");
+  const BlockedSection header = read_blocked_header(in, "Nodes", "nodes");
   std::int64_t found = 0;
-  for (std::int64_t b = 0; b < blocks; ++b) {
+  for (std::int64_t b = 0; b < header.blocks; ++b) {
     const auto block = in.tokens("Nodes", 4, "a node block: entity dimension, entity tag, parametric, count");
     const std::int64_t dimension = non_negative(block[0], in, "entity dimension");
     const bool parametric = integer(block[2], in, "parametric flag") != 0;
@@ -226,19 +231,14 @@ void read_nodes(Lines& in, MshFile& msh) {
     }
     found += n;
   }
-  if (found != total)
-    throw in.error("the $Nodes header announces " + std::to_string(total) + " nodes but its blocks hold " +
-                   std::to_string(found));
-  in.expect_end("Nodes");
+  expect_total(in, "Nodes", "nodes", header, found);
 }
 
 // Blocks of: entity dim, entity tag, element type, count; one element per line: tag, node tags.
 void read_elements(Lines& in, MshFile& msh, const BlockCheck& check) {
-  const auto header = in.tokens("Elements", 4, "blocks, elements, minimum and maximum element tag");
-  const std::int64_t blocks = non_negative(header[0], in, "number of blocks");
-  const std::int64_t total = non_negative(header[1], in, "number of elements");
+  const BlockedSection header = read_blocked_header(in, "Elements", "elements");
   std::int64_t found = 0;
-  for (std::int64_t b = 0; b < blocks; ++b) {
+  for (std::int64_t b = 0; b < header.blocks; ++b) {
     const auto words = in.tokens("Elements", 4, "an element block: entity dimension, entity tag, type, count");
     MshElementBlock block;
     block.dimension = static_cast<int>(std::min<std::int64_t>(non_negative(words[0], in, "entity dimension"), 4));
@@ -249,7 +249,7 @@ void read_elements(Lines& in, MshFile& msh, const BlockCheck& check) {
     if (check) check(msh, block);
     const int corners = element_node_count(block.type);
     for (std::int64_t k = 0; k < n; ++k) {
-      const auto items = split(in.next("Elements"));
+      const auto items = split_words(in.next("Elements"));
       if (corners > 0 ? items.size() != static_cast<std::size_t>(corners) + 1 : items.size() < 2)
         throw in.error("expected an element tag and " + (corners > 0 ? std::to_string(corners) : std::string("its")) +
                        " node tags, found " + std::to_string(items.size()) + " numbers");
@@ -262,10 +262,7 @@ void read_elements(Lines& in, MshFile& msh, const BlockCheck& check) {
     found += n;
     msh.blocks.push_back(std::move(block));
   }
-  if (found != total)
-    throw in.error("the $Elements header announces " + std::to_string(total) + " elements but its blocks hold " +
-                   std::to_string(found));
-  in.expect_end("Elements");
+  expect_total(in, "Elements", "elements", header, found);
 }
 
 void skip_section(Lines& in, std::string_view name) {
@@ -301,8 +298,8 @@ const std::vector<int>& MshFile::groups_of(int dimension, int entity, int line) 
   if (!has_entities) return none;
   const auto it = entity_groups.find({dimension, entity});
   if (it == entity_groups.end()) {
-    static constexpr std::array<const char*, 4> kinds{"point", "curve", "surface", "volume"};
-    const std::string kind = dimension >= 0 && dimension < 4 ? kinds[static_cast<std::size_t>(dimension)] : "entity";
+    const std::string kind =
+        dimension >= 0 && dimension < 4 ? entity_kinds[static_cast<std::size_t>(dimension)] : "entity";
     throw error_at(line, kind + " entity " + std::to_string(entity) + " of this element is not listed in $Entities");
   }
   return it->second;

@@ -17,6 +17,7 @@ using Catch::Matchers::Contains;
 using tankfsi::ConfigError;
 using tankfsi::testing::ScratchFolder;
 using tankfsi::testing::with_line;
+constexpr auto line_of = tankfsi::testing::line_number;
 using tankfsi::testing::write_text;
 
 namespace {
@@ -81,15 +82,6 @@ $Elements
 5 2 4 5
 $EndElements
 )";
-
-int line_of(const std::string& text, const std::string& line) {
-  std::istringstream in(text);
-  std::string current;
-  for (int i = 1; std::getline(in, current); ++i)
-    if (current == line) return i;
-  FAIL("line not found: " << line);
-  return 0;
-}
 
 std::string at_line(const std::string& name, int line) { return name + ":" + std::to_string(line) + ": "; }
 
