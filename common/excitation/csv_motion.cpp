@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/config/config_error.hpp"
+#include "common/io/text_fields.hpp"
 
 namespace tankfsi {
 
@@ -18,12 +19,6 @@ namespace {
 
 constexpr std::array<const char*, 4> columns{"time_s", "ax", "ay", "az"};
 constexpr const char* header_text = "time_s,ax,ay,az";
-
-std::string_view trimmed(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
-}
 
 std::vector<std::string_view> fields_of(std::string_view line) {
   std::vector<std::string_view> fields;

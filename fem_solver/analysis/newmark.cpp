@@ -2,14 +2,16 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace tankfsi::fem {
 
 NewmarkIntegrator::NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping,
                                      SolverFactory factory)
     : k_(stiffness), m_(mass_diagonal), damping_(damping), factory_(std::move(factory)) {
-  for (PetscVector* v : {&u_, &v_, &a_, &rhs_, &work_, &work2_, &combination_, &a_new_}) petsc_check(VecDuplicate(m_, v->out()), "VecDuplicate");
-  for (PetscVector* v : {&u_, &v_, &a_}) petsc_check(VecSet(v->get(), 0.0), "VecSet");
+  for (PetscVector* v : {&u_, &v_, &a_, &rhs_, &work_, &work2_, &a_new_, &u_new_, &ku_, &kv_, &ka_, &ka_new_})
+    petsc_check(VecDuplicate(m_, v->out()), "VecDuplicate");
+  for (PetscVector* v : {&u_, &v_, &a_, &ku_, &kv_, &ka_}) petsc_check(VecSet(v->get(), 0.0), "VecSet");
 }
 
 void NewmarkIntegrator::damping_times(Vec x, Vec out) const {
@@ -24,11 +26,14 @@ void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
   if (displacement != u_.get()) petsc_check(VecCopy(displacement, u_.get()), "VecCopy");
   if (velocity != v_.get()) petsc_check(VecCopy(velocity, v_.get()), "VecCopy");
   // a = M^-1 (F - K u - C v)
-  petsc_check(MatMult(k_, u_.get(), work_.get()), "MatMult");
-  petsc_check(VecWAXPY(rhs_.get(), -1.0, work_.get(), load), "VecWAXPY");
+  petsc_check(MatMult(k_, u_.get(), ku_.get()), "MatMult");
+  petsc_check(VecWAXPY(rhs_.get(), -1.0, ku_.get(), load), "VecWAXPY");
   damping_times(v_.get(), work_.get());
   petsc_check(VecAXPY(rhs_.get(), -1.0, work_.get()), "VecAXPY");
   petsc_check(VecPointwiseDivide(a_.get(), rhs_.get(), m_), "VecPointwiseDivide");
+  // The products the steps carry along (see the header).
+  petsc_check(MatMult(k_, v_.get(), kv_.get()), "MatMult");
+  petsc_check(MatMult(k_, a_.get(), ka_.get()), "MatMult");
 }
 
 void NewmarkIntegrator::factorise(double dt) {
@@ -58,30 +63,41 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   const double a3 = 1.0 / (2.0 * beta) - 1.0;
   const double a4 = gamma / beta - 1.0;
   const double a5 = dt / 2.0 * (gamma / beta - 2.0);
-  // rhs = F + M (a0 u + a2 v + a3 a) + C (a1 u + a4 v + a5 a)
-  petsc_check(VecAXPBYPCZ(work_.get(), a0, a2, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
-  petsc_check(VecAXPY(work_.get(), a3, a_.get()), "VecAXPY");
+  const double alpha = damping_.alpha;
+  const double beta_r = damping_.beta;
+  // rhs = F + M (a0 u + a2 v + a3 a) + C (a1 u + a4 v + a5 a), C = alpha M + beta_R K:
+  //     = F + M ((a0 + alpha a1) u + (a2 + alpha a4) v + (a3 + alpha a5) a)
+  //         + beta_R (a1 K u + a4 K v + a5 K a)
+  petsc_check(VecAXPBYPCZ(work_.get(), a0 + alpha * a1, a2 + alpha * a4, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
+  petsc_check(VecAXPY(work_.get(), a3 + alpha * a5, a_.get()), "VecAXPY");
   petsc_check(VecPointwiseMult(rhs_.get(), m_, work_.get()), "VecPointwiseMult");
   petsc_check(VecAXPY(rhs_.get(), 1.0, load), "VecAXPY");
-  if (damping_.alpha != 0.0 || damping_.beta != 0.0) {
-    petsc_check(VecAXPBYPCZ(combination_.get(), a1, a4, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
-    petsc_check(VecAXPY(combination_.get(), a5, a_.get()), "VecAXPY");
-    damping_times(combination_.get(), work_.get());
-    petsc_check(VecAXPY(rhs_.get(), 1.0, work_.get()), "VecAXPY");
+  if (beta_r != 0.0) {
+    const PetscScalar weights[3] = {beta_r * a1, beta_r * a4, beta_r * a5};
+    Vec products[3] = {ku_.get(), kv_.get(), ka_.get()};
+    petsc_check(VecMAXPY(rhs_.get(), 3, weights, products), "VecMAXPY");
   }
-  // u_new from K_eff; then a_new = a0 (u_new - u) - a2 v - a3 a,
-  // v_new = v + dt ((1 - gamma) a + gamma a_new).
-  petsc_check(VecCopy(u_.get(), work_.get()), "VecCopy");
-  solver_->solve(rhs_.get(), u_.get());
-  petsc_check(VecWAXPY(a_new_.get(), -1.0, work_.get(), u_.get()), "VecWAXPY");
-  petsc_check(VecScale(a_new_.get(), a0), "VecScale");
-  petsc_check(VecAXPY(a_new_.get(), -a2, v_.get()), "VecAXPY");
-  petsc_check(VecAXPY(a_new_.get(), -a3, a_.get()), "VecAXPY");
-  petsc_check(VecAXPBYPCZ(v_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, a_.get(), a_new_.get()), "VecAXPBYPCZ");
-  petsc_check(VecCopy(a_new_.get(), a_.get()), "VecCopy");
+  solver_->solve(rhs_.get(), u_new_.get());
   PetscReal norm = 0.0;
-  petsc_check(VecNorm(u_.get(), NORM_INFINITY, &norm), "VecNorm");
+  petsc_check(VecNorm(u_new_.get(), NORM_INFINITY, &norm), "VecNorm");
   if (!std::isfinite(norm)) throw std::runtime_error("the Newmark step produced a non-finite displacement");
+  // a_new = a0 (u_new - u) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new)
+  petsc_check(VecWAXPY(a_new_.get(), -1.0, u_.get(), u_new_.get()), "VecWAXPY");
+  petsc_check(VecAXPBYPCZ(a_new_.get(), -a2, -a3, a0, v_.get(), a_.get()), "VecAXPBYPCZ");
+  petsc_check(VecAXPBYPCZ(v_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, a_.get(), a_new_.get()), "VecAXPBYPCZ");
+  if (beta_r != 0.0) {
+    // K u_new = (rhs - (a0 + a1 alpha) M u_new) / (1 + a1 beta_R); then K a and K v as a and v.
+    petsc_check(VecPointwiseMult(work_.get(), m_, u_new_.get()), "VecPointwiseMult");
+    petsc_check(VecAXPBY(work_.get(), 1.0 / (1.0 + a1 * beta_r), -(a0 + a1 * alpha) / (1.0 + a1 * beta_r), rhs_.get()),
+                "VecAXPBY");
+    petsc_check(VecWAXPY(ka_new_.get(), -1.0, ku_.get(), work_.get()), "VecWAXPY");
+    petsc_check(VecAXPBYPCZ(ka_new_.get(), -a2, -a3, a0, kv_.get(), ka_.get()), "VecAXPBYPCZ");
+    petsc_check(VecAXPBYPCZ(kv_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, ka_.get(), ka_new_.get()), "VecAXPBYPCZ");
+    std::swap(ka_, ka_new_);
+    std::swap(ku_, work_);
+  }
+  std::swap(a_, a_new_);
+  std::swap(u_, u_new_);
 }
 
 double NewmarkIntegrator::energy() const {

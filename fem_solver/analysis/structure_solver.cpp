@@ -42,10 +42,29 @@ StructureSolver::StructureSolver(StructureSystem& system, RayleighCoefficients d
   PetscVector zero = assembler.create_vector();
   petsc_check(VecSet(zero.get(), 0.0), "VecSet");
   integrator_.initialise(zero.get(), zero.get(), load_.get());
-  refresh_state();
 }
 
-void StructureSolver::set_interface(InterfaceMesh interface) { interface_ = std::move(interface); }
+void StructureSolver::set_interface(InterfaceMesh interface) {
+  interface_ = std::move(interface);
+  const DofMap& dofs = system_.dofs();
+  interface_equations_.clear();
+  std::vector<PetscInt> free;
+  for (const int node : interface_.node_ids)
+    for (int k = 0; k < 3; ++k) {
+      interface_equations_.push_back(dofs.equation(node, k));
+      if (interface_equations_.back() >= 0) free.push_back(interface_equations_.back());
+    }
+  // Every rank receives the interface's free values: a scatter of 3 values per
+  // vertex instead of the whole state.
+  IS from = nullptr;
+  petsc_check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(free.size()), free.data(), PETSC_COPY_VALUES, &from),
+              "ISCreateGeneral");
+  petsc_check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(free.size()), interface_gathered_.out()), "VecCreateSeq");
+  const PetscErrorCode code =
+      VecScatterCreate(integrator_.displacement(), from, interface_gathered_.get(), nullptr, interface_scatter_.out());
+  ISDestroy(&from);
+  petsc_check(code, "VecScatterCreate");
+}
 
 void StructureSolver::set_external_loads(std::span<const double> forces) {
   if (forces.size() != 3 * interface_.node_ids.size())
@@ -62,7 +81,7 @@ void StructureSolver::set_external_loads(std::span<const double> forces) {
 void StructureSolver::balance_acceleration() {
   build_load(time_);
   integrator_.initialise(integrator_.displacement(), integrator_.velocity(), load_.get());
-  refresh_state();
+  mark_state_changed();
 }
 
 void StructureSolver::build_load(double t) {
@@ -85,33 +104,64 @@ void StructureSolver::advance(double dt) {
   }
   time_ += dt;
   ++steps_;
-  refresh_state();
+  mark_state_changed();
 }
 
-void StructureSolver::refresh_state() {
-  SystemAssembler& assembler = system_.assembler();
-  assembler.gather(integrator_.displacement(), 1.0, displacement_);
-  assembler.gather(integrator_.velocity(), 0.0, velocity_);
-  assembler.gather(integrator_.acceleration(), 0.0, acceleration_);
+void StructureSolver::mark_state_changed() {
+  for (GatheredState* state : {&displacement_, &velocity_, &acceleration_}) state->current = false;
 }
 
-std::vector<double> StructureSolver::interface_values(const NodalValues& values) const {
+const NodalValues& StructureSolver::gathered(GatheredState& state, Vec values, double prescribed_scale) const {
+  if (!state.current) system_.assembler().gather(values, prescribed_scale, state.values);
+  state.current = true;
+  return state.values;
+}
+
+// Displacements carry the prescribed values of constrained DOFs; velocities
+// and accelerations are zero there (prescribed displacements are constant).
+const NodalValues& StructureSolver::displacement() const {
+  return gathered(displacement_, integrator_.displacement(), 1.0);
+}
+const NodalValues& StructureSolver::velocity() const { return gathered(velocity_, integrator_.velocity(), 0.0); }
+const NodalValues& StructureSolver::acceleration() const {
+  return gathered(acceleration_, integrator_.acceleration(), 0.0);
+}
+
+double StructureSolver::largest_displacement() const {
+  return system_.assembler().largest_translation(integrator_.displacement(), 1.0);
+}
+
+std::vector<double> StructureSolver::interface_values(Vec values, double prescribed_scale) const {
   std::vector<double> out;
-  out.reserve(3 * interface_.node_ids.size());
-  for (const int node : interface_.node_ids)
-    for (std::size_t k = 0; k < 3; ++k) out.push_back(values[dofs_per_node * static_cast<std::size_t>(node) + k]);
+  out.reserve(interface_equations_.size());
+  if (!interface_scatter_) return out;
+  petsc_check(VecScatterBegin(interface_scatter_.get(), values, interface_gathered_.get(), INSERT_VALUES, SCATTER_FORWARD),
+              "VecScatterBegin");
+  petsc_check(VecScatterEnd(interface_scatter_.get(), values, interface_gathered_.get(), INSERT_VALUES, SCATTER_FORWARD),
+              "VecScatterEnd");
+  const PetscScalar* x = nullptr;
+  petsc_check(VecGetArrayRead(interface_gathered_.get(), &x), "VecGetArrayRead");
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < interface_equations_.size(); ++i) {
+    const int node = interface_.node_ids[i / 3];
+    const int component = static_cast<int>(i % 3);
+    out.push_back(interface_equations_[i] >= 0 ? x[next++] : prescribed_scale * system_.dofs().prescribed(node, component));
+  }
+  petsc_check(VecRestoreArrayRead(interface_gathered_.get(), &x), "VecRestoreArrayRead");
   return out;
 }
 
-std::vector<double> StructureSolver::interface_displacements() const { return interface_values(displacement_); }
-std::vector<double> StructureSolver::interface_velocities() const { return interface_values(velocity_); }
+std::vector<double> StructureSolver::interface_displacements() const {
+  return interface_values(integrator_.displacement(), 1.0);
+}
+std::vector<double> StructureSolver::interface_velocities() const { return interface_values(integrator_.velocity(), 0.0); }
 
 Eigen::Vector3d StructureSolver::total_external_force() const {
   return constant_total_ + external_total_ - free_mass_.cwiseProduct(motion_.acceleration(time_));
 }
 
 NodalValues StructureSolver::support_forces() const {
-  return system_.assembler().reactions(displacement_, velocity_, integrator_.damping().beta);
+  return system_.assembler().reactions(displacement(), velocity(), integrator_.damping().beta);
 }
 
 }  // namespace tankfsi::fem

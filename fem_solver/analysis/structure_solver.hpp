@@ -45,16 +45,22 @@ class StructureSolver {
   /// shell_factorise rather than inside the first shell_step).
   void prepare(double dt) { integrator_.prepare(dt); }
   /// One Newmark step to t + dt; throws std::runtime_error naming the time if
-  /// the solve fails.
+  /// the solve fails, and leaves the state at the last good step.
   void advance(double dt);
 
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] long long steps() const { return steps_; }
-  /// The state of the whole structure (6 per node), on every rank.
-  [[nodiscard]] const NodalValues& displacement() const { return displacement_; }
-  [[nodiscard]] const NodalValues& velocity() const { return velocity_; }
-  [[nodiscard]] const NodalValues& acceleration() const { return acceleration_; }
-  /// 3 per interface vertex.
+  /// The state of the whole structure (6 per node), on every rank: gathered
+  /// from the distributed state when first asked for after a step, so a step
+  /// whose state nobody reads moves none of it between ranks. Collective: all
+  /// ranks ask at the same steps.
+  [[nodiscard]] const NodalValues& displacement() const;
+  [[nodiscard]] const NodalValues& velocity() const;
+  [[nodiscard]] const NodalValues& acceleration() const;
+  /// The largest nodal translation now (m), without a gather; collective.
+  [[nodiscard]] double largest_displacement() const;
+  /// 3 per interface vertex, on every rank: only the interface's values move
+  /// between ranks. Collective.
   [[nodiscard]] std::vector<double> interface_displacements() const;
   [[nodiscard]] std::vector<double> interface_velocities() const;
   /// Total external load on the structure now: constant + external + ground (N).
@@ -65,9 +71,15 @@ class StructureSolver {
   [[nodiscard]] const NewmarkIntegrator& integrator() const { return integrator_; }
 
  private:
+  /// The whole structure's values of a distributed state vector, gathered once per step.
+  struct GatheredState {
+    NodalValues values;
+    bool current = false;
+  };
   void build_load(double t);
-  void refresh_state();
-  [[nodiscard]] std::vector<double> interface_values(const NodalValues& values) const;
+  void mark_state_changed();
+  const NodalValues& gathered(GatheredState& state, Vec values, double prescribed_scale) const;
+  [[nodiscard]] std::vector<double> interface_values(Vec values, double prescribed_scale) const;
 
   StructureSystem& system_;
   const GroundMotion& motion_;
@@ -80,7 +92,10 @@ class StructureSolver {
   Eigen::Vector3d external_total_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d free_mass_ = Eigen::Vector3d::Zero();
   InterfaceMesh interface_;
-  NodalValues displacement_, velocity_, acceleration_;
+  std::vector<PetscInt> interface_equations_;  ///< per interface vertex and translation: equation or -1
+  PetscScatter interface_scatter_;             ///< the free ones among them, to every rank
+  PetscVector interface_gathered_;
+  mutable GatheredState displacement_, velocity_, acceleration_;
   double time_ = 0.0;
   long long steps_ = 0;
 };

@@ -1,9 +1,11 @@
 // The shell mesh of a case: structure.mesh.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "common/config/config_error.hpp"
 #include "fem_solver/app/structure_case.hpp"
+#include "fem_solver/mesh/gmsh_shell_mesh.hpp"
 #include "fem_solver/mesh/shell_surfaces.hpp"
 #include "fem_solver/mesh/tank_mesh.hpp"
 
@@ -24,6 +26,22 @@ std::array<int, 2> divisions(const CaseConfig& config) {
 std::array<double, 2> range(const CaseConfig& config, const std::string& key) {
   const auto v = config.real_vector(key);
   return {v[0], v[1]};
+}
+
+// structure.mesh.regions: names separated by commas (Gmsh names may hold spaces).
+std::vector<std::string> region_names(const CaseConfig& config) {
+  std::vector<std::string> names;
+  std::string text = config.text("structure.mesh.regions");
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    const auto first = item.find_first_not_of(" \t");
+    if (first != std::string::npos) names.push_back(item.substr(first, item.find_last_not_of(" \t") - first + 1));
+    else if (end < text.size()) throw config.error_at("structure.mesh.regions", "an empty name between commas");
+    begin = end + 1;
+  }
+  return names;
 }
 
 ShellMesh generate(const CaseConfig& config, const std::string& type) {
@@ -61,6 +79,13 @@ ShellMesh generate(const CaseConfig& config, const std::string& type) {
     t.element_size = config.real("structure.mesh.element_size");
     t.liquid_level = config.real("structure.mesh.liquid_level");
     return tank_mesh(t);
+  }
+  if (type == "gmsh") {
+    try {
+      return read_gmsh_shell_mesh(config.path("structure.mesh.file"), region_names(config));
+    } catch (const std::out_of_range& e) {
+      throw config.error_at("structure.mesh.regions", e.what());
+    }
   }
   throw config.error_at("structure.mesh.type", "unknown mesh type " + type);
 }

@@ -30,7 +30,7 @@ int component_index(const ConfigView& record, const std::string& word) {
 
 }  // namespace
 
-std::vector<DofConstraint> read_constraints(const CaseConfig& config, const ShellMesh& mesh) {
+std::vector<DofConstraint> read_constraints(const CaseConfig& config, ShellMesh& mesh) {
   std::vector<DofConstraint> out;
   for (const ConfigView& record : config.records("structure.boundary_conditions")) {
     if (record.has("nodes") == record.has("position"))
@@ -48,6 +48,7 @@ std::vector<DofConstraint> read_constraints(const CaseConfig& config, const Shel
       // no rotation about the in-plane axes (the rotation vector is axial).
       const int n = record.text("plane_normal")[0] - 'x';
       components = {{n, 0.0}, {3 + (n + 1) % 3, 0.0}, {3 + (n + 2) % 3, 0.0}};
+      for (const int node : nodes) mesh.symmetry_planes.emplace(node, Eigen::Vector3d::Unit(n));
     } else {
       std::istringstream words(record.text("components"));
       for (std::string word; words >> word;) components.emplace_back(component_index(record, word), 0.0);

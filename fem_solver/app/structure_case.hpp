@@ -48,7 +48,8 @@ struct StructureCase {
 // The parts, one file each.
 [[nodiscard]] ShellMesh read_structure_mesh(const CaseConfig& config);
 [[nodiscard]] std::vector<ShellSection> read_sections(const CaseConfig& config, const ShellMesh& mesh);
-[[nodiscard]] std::vector<DofConstraint> read_constraints(const CaseConfig& config, const ShellMesh& mesh);
+/// Also records the symmetry supports' planes on the mesh (its directors use them).
+[[nodiscard]] std::vector<DofConstraint> read_constraints(const CaseConfig& config, ShellMesh& mesh);
 [[nodiscard]] LoadSet read_loads(const CaseConfig& config, const ShellMesh& mesh);
 
 }  // namespace tankfsi::fem

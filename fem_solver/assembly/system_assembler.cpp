@@ -1,6 +1,7 @@
 #include "fem_solver/assembly/system_assembler.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace tankfsi::fem {
@@ -114,6 +115,27 @@ void SystemAssembler::scatter(const NodalValues& values, Vec target) const {
     }
   }
   petsc_check(VecRestoreArray(target, &x), "VecRestoreArray");
+}
+
+double SystemAssembler::largest_translation(Vec free_values, double prescribed_scale) const {
+  const PetscScalar* x = nullptr;
+  petsc_check(VecGetArrayRead(free_values, &x), "VecGetArrayRead");
+  const PetscInt first = dofs_.first_owned();
+  double largest = 0.0;
+  for (std::size_t node = 0; node < model_.mesh.nodes.size(); ++node) {
+    if (partition_.node_owner[node] != rank_) continue;
+    double squared = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const PetscInt row = dofs_.equation(static_cast<int>(node), c);
+      const double value = row >= 0 ? x[row - first] : prescribed_scale * dofs_.prescribed(static_cast<int>(node), c);
+      squared += value * value;
+    }
+    largest = std::max(largest, squared);
+  }
+  petsc_check(VecRestoreArrayRead(free_values, &x), "VecRestoreArrayRead");
+  double global = 0.0;
+  MPI_Allreduce(&largest, &global, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return std::sqrt(global);
 }
 
 PetscVector SystemAssembler::lumped_mass() const {

@@ -46,6 +46,10 @@ class SystemAssembler {
   [[nodiscard]] NodalValues gather(Vec free_values, double prescribed_scale);
   /// The same into `out`, reusing its storage (the per-step state of a dynamic run).
   void gather(Vec free_values, double prescribed_scale, NodalValues& out);
+  /// The largest translation |(u_x, u_y, u_z)| of any node (constrained DOFs
+  /// at `prescribed_scale` times their value), over all ranks, without
+  /// gathering the vector: collective.
+  [[nodiscard]] double largest_translation(Vec free_values, double prescribed_scale) const;
   /// Writes nodal values (the owned free DOFs) into a distributed vector.
   void scatter(const NodalValues& values, Vec target) const;
   /// Forces the structure puts on its supports through its elements,

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct ShellMesh {
   /// vector where unknown). Directors use them: averaged element normals are
   /// one-sided, hence tilted, on edges and symmetry planes.
   std::vector<Eigen::Vector3d> node_normals;
+  /// Unit normals of the mirror-symmetry planes nodes lie on (a case's
+  /// symmetry supports), node -> plane normal. Directors there are kept in
+  /// the plane, as the averaged normal of the mirrored, whole mesh would be.
+  std::multimap<int, Eigen::Vector3d> symmetry_planes;
 
   /// Index of region `name`, added if new.
   int region_index(const std::string& name);
@@ -43,9 +48,21 @@ struct ShellMesh {
   [[nodiscard]] std::vector<int> elements_of(const std::string& name) const;
   /// The node closest to `point` (lowest index on ties).
   [[nodiscard]] int nearest_node(const Eigen::Vector3d& point) const;
-  /// Throws std::invalid_argument on out-of-range or repeated element nodes,
-  /// unused nodes or degenerate (zero-area) elements.
+  /// Throws MeshDefect on out-of-range or repeated element nodes, degenerate
+  /// (zero-area) or inverted (folded) elements, two elements oriented
+  /// oppositely across a shared edge, and nodes of no element;
+  /// std::invalid_argument for a mesh without elements.
   void check() const;
+};
+
+/// What ShellMesh::check() found wrong, and where: the elements (mesh
+/// indices) or the node, so that a reader can name them as its file does.
+class MeshDefect : public std::invalid_argument {
+ public:
+  MeshDefect(std::vector<int> elements_in, int node_in, const std::string& problem_in);
+  std::vector<int> elements;  ///< one, or two for an orientation defect
+  int node = -1;              ///< for a node of no element
+  std::string problem;        ///< the text after the subject: "is degenerate (zero area at a corner)"
 };
 
 /// Per element node, the shell director: the node's exact normal when the mesh
@@ -53,6 +70,9 @@ struct ShellMesh {
 /// average of the unit normals of the elements around the node that lie
 /// within `crease_angle` of this element's — smooth over a curved shell,
 /// separate on each side of a kink (wall-roof and wall-bottom junctions).
+/// At a node on a symmetry plane the director's component along the plane's
+/// normal is removed when it is small (below sin(crease_angle)): an averaged
+/// normal there is one-sided, tilted by half the facet angle.
 using Directors = std::vector<std::array<Eigen::Vector3d, 4>>;
 [[nodiscard]] Directors compute_directors(const ShellMesh& mesh, double crease_angle_degrees = 20.0);
 

@@ -11,13 +11,18 @@ Newmark steps, which times every stage of the program once:
   shell_factorise  Cholesky (MUMPS) of K_eff = K (1 + a1 beta) + M (a0 + a1 alpha)
   shell_step       mean wall time of one Newmark step (two triangular solves, the
                    right-hand side, the gathers for output)
-and the peak resident memory of the largest rank. Figures go to
+and the peak resident memory of the largest rank. The BLAS the solver loads
+(MUMPS' dense kernels run on it: the reference BLAS is several times slower
+than OpenBLAS) and the machine's load average are recorded with the figures,
+since both change them. Figures go to
 OUTPUT/structure_figures.json and a table to OUTPUT/structure_figures.md.
 Nothing is asserted: a benchmark reports, the reader judges.
 """
 import argparse
 import json
+import os
 import pathlib
+import subprocess
 import sys
 import tempfile
 
@@ -51,6 +56,15 @@ def run(solver, case, ranks, folder):
     }
 
 
+def blas_library(solver):
+    """The file libblas.so.3 resolves to for the solver (after alternatives and LD_LIBRARY_PATH)."""
+    result = subprocess.run(["ldd", solver], capture_output=True, text=True)
+    for line in result.stdout.splitlines():
+        if "libblas.so" in line and "=>" in line:
+            return os.path.realpath(line.split("=>")[1].split("(")[0].strip())
+    return "unknown"
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--solver", required=True)
@@ -64,12 +78,17 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         for ranks in args.ranks:
+            load_before = os.getloadavg()[0]
             rows.append(run(str(pathlib.Path(args.solver).resolve()), case, ranks, pathlib.Path(scratch) / f"np{ranks}"))
+            rows[-1]["load_average_before"] = load_before
             print(json.dumps(rows[-1]))
-    (output / "structure_figures.json").write_text(json.dumps({"case": case, "runs": rows}, indent=2) + "\n")
+    blas = blas_library(str(pathlib.Path(args.solver).resolve()))
+    (output / "structure_figures.json").write_text(
+        json.dumps({"case": case, "blas": blas, "cores": os.cpu_count(), "runs": rows}, indent=2) + "\n")
     columns = ["ranks", "nodes", "equations", "assembly_s", "factorisation_s", "newmark_step_s", "modal_20_modes_s",
                "peak_memory_largest_rank_MiB", "fundamental_period_s"]
-    lines = [f"Structure benchmark: {case}", "", "| " + " | ".join(columns) + " |",
+    columns.append("load_average_before")
+    lines = [f"Structure benchmark: {case} (BLAS: {blas}, {os.cpu_count()} cores)", "", "| " + " | ".join(columns) + " |",
              "|" + "---|" * len(columns)]
     for r in rows:
         lines.append("| " + " | ".join(f"{r[c]:.4g}" if isinstance(r[c], float) else str(r[c]) for c in columns) + " |")

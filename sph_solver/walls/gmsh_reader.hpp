@@ -1,16 +1,14 @@
 #pragma once
 // Reader of Gmsh MSH 4.1 ASCII surface meshes into a TriangleMesh, with the physical
 // group of each triangle — how a wall mesh made in Gmsh (tank wall, bottom, roof as
-// named groups) reaches the solver.
+// named groups) reaches the solver. The file is parsed by common/io/gmsh_msh (the
+// project's one MSH parser; its errors are this reader's too).
 //
-// Read: $MeshFormat (must be 4.1, file type 0 = ASCII), $PhysicalNames, $Entities (the
-// physical tags of each surface), $Nodes (with or without parametric coordinates) and
-// $Elements. Surface elements of type 2 (3-node triangle) are kept as they are; type 3
+// Surface elements of type 2 (3-node triangle) are kept as they are; type 3
 // (4-node quadrangle a b c d) becomes two triangles along its shorter diagonal, a–c
 // (a b c, a c d) or b–d (a b d, b c d), which keeps the orientation and gives the
 // better-shaped pair. Elements of points, curves and volumes are ignored; any other
-// surface element type (second order, ...) is an error, not silently dropped. Other
-// sections ($Periodic, $NodeData, $Comments, ...) are skipped.
+// surface element type (second order, ...) is an error, not silently dropped.
 //
 // Orientation is the element's node order (right-hand rule), as Gmsh writes it: the
 // caller orients the surfaces in Gmsh so that the normals point into the fluid.
@@ -19,11 +17,8 @@
 // each vertex back to its Gmsh node (for matching the FEM mesh).
 //
 // Errors raise tankfsi::ConfigError (a std::runtime_error) naming the file and line:
-// unreadable file, a first section other than $MeshFormat, versions other than 4.1
-// (v2.2: re-export as 4.1), binary files (re-export as ASCII), malformed or missing
-// numbers, counts that disagree with their headers, a missing $End line, duplicate or
-// unknown node tags, surfaces missing from $Entities, unknown physical group names,
-// and a file (or selection) without any triangle.
+// those of the parser, unknown node tags, surfaces missing from $Entities, unknown
+// physical group names, and a file (or selection) without any triangle.
 #include <cstdint>
 #include <filesystem>
 #include <map>

@@ -3,6 +3,9 @@
 // the ground-motion load -M iota a_g.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <limits>
+
 #include "common/excitation/ground_motion.hpp"
 #include "fem_solver/analysis/structure_solver.hpp"
 #include "fem_solver/mesh/shell_surfaces.hpp"
@@ -130,4 +133,37 @@ TEST_CASE("ground acceleration loads the structure with -M iota a_g", "[fem][cou
   }
   REQUIRE(largest(shaken.displacement()) > 0.0);
   CHECK(largest_difference(shaken.displacement(), pushed.displacement()) <= 1e-10 * largest(shaken.displacement()));
+}
+
+TEST_CASE("a failed step leaves the last good state; the largest displacement needs no gather", "[fem][coupling-api]") {
+  const ShellModel model = half_cylinder();
+  const tankfsi::ZeroGroundMotion still;
+  StructureSystem system(MPI_COMM_WORLD, half_cylinder(), clamp(model.mesh));
+  StructureSolver solver(system, {2.0, 1e-5}, LoadSet{}, still);
+  solver.set_interface(extract_interface(system.model().mesh, "wetted"));
+  std::vector<double> forces(3 * solver.interface().node_ids.size(), 0.0);
+  for (std::size_t i = 0; i < forces.size(); i += 3) forces[i] = 10.0;
+  solver.set_external_loads(forces);
+  for (int step = 0; step < 5; ++step) solver.advance(1e-4);
+  const NodalValues u = solver.displacement();
+  const NodalValues v = solver.velocity();
+  // Against the gathered state: the largest |(u_x, u_y, u_z)| of any node.
+  double largest_gathered = 0.0;
+  for (std::size_t i = 0; i < u.size(); i += 6)
+    largest_gathered = std::max(largest_gathered, std::sqrt(u[i] * u[i] + u[i + 1] * u[i + 1] + u[i + 2] * u[i + 2]));
+  REQUIRE(largest_gathered > 0.0);
+  CHECK(solver.largest_displacement() == Approx(largest_gathered).epsilon(1e-14));
+
+  // A load that poisons the solve, on the last interface vertex (at the free end; the
+  // first ones are clamped, and a load on a support never reaches the solve).
+  forces[forces.size() - 3] = std::numeric_limits<double>::quiet_NaN();
+  solver.set_external_loads(forces);
+  CHECK_THROWS_WITH(solver.advance(1e-4), Catch::Matchers::Contains("structure step 6") &&
+                                              Catch::Matchers::Contains("non-finite displacement"));
+  CHECK(solver.steps() == 5);
+  CHECK(solver.time() == Approx(5e-4));
+  const bool same_displacement = solver.displacement() == u;  // bit for bit: nothing of the failed step was kept
+  const bool same_velocity = solver.velocity() == v;
+  CHECK(same_displacement);
+  CHECK(same_velocity);
 }

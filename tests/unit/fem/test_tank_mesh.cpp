@@ -6,8 +6,11 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "fem_solver/mesh/interface_mesh.hpp"
+#include "fem_solver/mesh/shell_surfaces.hpp"
 #include "fem_solver/mesh/tank_mesh.hpp"
 
 using namespace tankfsi::fem;
@@ -104,5 +107,37 @@ TEST_CASE("wetted interface: triangles over the mesh's own nodes, facing the liq
     const Eigen::Vector3d inward = centre.z() < 1e-9 ? Eigen::Vector3d(0, 0, 1) : Eigen::Vector3d(-centre.x(), -centre.y(), 0.0);
     CHECK(normal.dot(inward) > 0.0);
     CHECK(centre.z() < 14.8 + small_tank().element_size);
+  }
+}
+
+TEST_CASE("cylinder and sphere patches: consistently oriented, normals away from the centre", "[fem][mesh]") {
+  CylinderPatch c;
+  c.phi_start = -30.0;
+  c.phi_end = 330.0;  // a full circle: the seam is shared, not doubled
+  c.divisions_phi = 12;
+  SpherePatch s;
+  s.theta_end = 150.0;
+  s.phi_end = 120.0;
+  for (const ShellMesh& mesh : {cylinder_patch(c), sphere_patch(s)}) {
+    REQUIRE_NOTHROW(mesh.check());  // includes the orientation across every shared edge
+    for (const auto& e : mesh.elements) {
+      const auto p = [&](int k) { return mesh.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(k)])]; };
+      const Eigen::Vector3d normal = (p(1) - p(0)).cross(p(2) - p(0));
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (int k = 0; k < e.node_count(); ++k) centre += p(k) / e.node_count();
+      const Eigen::Vector3d outward = mesh.node_sets.count("z_start") != 0 ? Eigen::Vector3d(centre.x(), centre.y(), 0.0) : centre;
+      CHECK(normal.dot(outward) > 0.0);
+    }
+  }
+  // One element turned over is found, and named with its neighbour.
+  ShellMesh flipped = cylinder_patch(c);
+  std::swap(flipped.elements[5].nodes[1], flipped.elements[5].nodes[3]);
+  try {
+    flipped.check();
+    FAIL("a flipped element passed the check");
+  } catch (const MeshDefect& defect) {
+    CHECK(defect.elements.size() == 2);
+    CHECK((defect.elements[0] == 5 || defect.elements[1] == 5));
+    CHECK(std::string(defect.what()).find("oriented oppositely") != std::string::npos);
   }
 }

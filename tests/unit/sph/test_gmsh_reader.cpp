@@ -24,6 +24,7 @@ using Eigen::Vector3d;
 using tankfsi::ConfigError;
 using tankfsi::testing::ScratchFolder;
 using tankfsi::testing::with_line;
+constexpr auto line_of = tankfsi::testing::line_number;
 using tankfsi::testing::write_text;
 namespace fs = std::filesystem;
 
@@ -92,16 +93,6 @@ $Elements
 $EndElements
 )";
 
-
-// 1-based number of the line that equals `line`.
-int line_of(const std::string& text, const std::string& line) {
-  std::istringstream in(text);
-  std::string current;
-  for (int i = 1; std::getline(in, current); ++i)
-    if (current == line) return i;
-  FAIL("line not found: " << line);
-  return 0;
-}
 
 // The triangle's corners as Gmsh node tags.
 std::vector<std::int64_t> node_tags(const GmshSurface& surface, int t) {
