@@ -110,4 +110,22 @@ double NewmarkIntegrator::energy() const {
   return 0.5 * (kinetic + strain);
 }
 
+void NewmarkIntegrator::save(NewmarkState& state) const {
+  const std::pair<const PetscVector*, PetscVector*> pairs[] = {{&u_, &state.u},   {&v_, &state.v},   {&a_, &state.a},
+                                                               {&ku_, &state.ku}, {&kv_, &state.kv}, {&ka_, &state.ka}};
+  for (const auto& [from, to] : pairs) {
+    if (!*to) petsc_check(VecDuplicate(from->get(), to->out()), "VecDuplicate");
+    petsc_check(VecCopy(from->get(), to->get()), "VecCopy");
+  }
+}
+
+void NewmarkIntegrator::restore(const NewmarkState& state) {
+  const std::pair<const PetscVector*, PetscVector*> pairs[] = {{&state.u, &u_},   {&state.v, &v_},   {&state.a, &a_},
+                                                               {&state.ku, &ku_}, {&state.kv, &kv_}, {&state.ka, &ka_}};
+  for (const auto& [from, to] : pairs) {
+    if (!*from) throw std::logic_error("NewmarkIntegrator::restore: no state saved");
+    petsc_check(VecCopy(from->get(), to->get()), "VecCopy");
+  }
+}
+
 }  // namespace tankfsi::fem

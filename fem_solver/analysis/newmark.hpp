@@ -22,6 +22,12 @@
 
 namespace tankfsi::fem {
 
+/// A copy of the integrator's state (u, v, a and the K products carried
+/// with them): what an implicit coupling window rolls back to.
+struct NewmarkState {
+  PetscVector u, v, a, ku, kv, ka;
+};
+
 class NewmarkIntegrator {
  public:
   static constexpr double gamma = 0.5;
@@ -45,6 +51,10 @@ class NewmarkIntegrator {
   [[nodiscard]] Vec displacement() const { return u_.get(); }
   [[nodiscard]] Vec velocity() const { return v_.get(); }
   [[nodiscard]] Vec acceleration() const { return a_.get(); }
+  /// Copies the state into `state` (its vectors made on first use).
+  void save(NewmarkState& state) const;
+  /// Sets the state back to a saved one.
+  void restore(const NewmarkState& state);
   /// 1/2 v.M v + 1/2 u.K u (J): conserved by the undamped, unloaded rule.
   [[nodiscard]] double energy() const;
   [[nodiscard]] const RayleighCoefficients& damping() const { return damping_; }

@@ -107,6 +107,19 @@ void StructureSolver::advance(double dt) {
   mark_state_changed();
 }
 
+void StructureSolver::save(Checkpoint& checkpoint) const {
+  integrator_.save(checkpoint.state);
+  checkpoint.time = time_;
+  checkpoint.steps = steps_;
+}
+
+void StructureSolver::restore(const Checkpoint& checkpoint) {
+  integrator_.restore(checkpoint.state);
+  time_ = checkpoint.time;
+  steps_ = checkpoint.steps;
+  mark_state_changed();
+}
+
 void StructureSolver::mark_state_changed() {
   for (GatheredState* state : {&displacement_, &velocity_, &acceleration_}) state->current = false;
 }

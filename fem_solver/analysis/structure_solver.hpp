@@ -48,6 +48,16 @@ class StructureSolver {
   /// the solve fails, and leaves the state at the last good step.
   void advance(double dt);
 
+  /// The solver's state (Newmark state, time, step count) for an implicit
+  /// coupling window to roll back to.
+  struct Checkpoint {
+    NewmarkState state;
+    double time = 0.0;
+    long long steps = 0;
+  };
+  void save(Checkpoint& checkpoint) const;
+  void restore(const Checkpoint& checkpoint);
+
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] long long steps() const { return steps_; }
   /// The state of the whole structure (6 per node), on every rank: gathered

@@ -8,6 +8,7 @@
 #include "fem_solver/analysis/modal_analysis.hpp"
 #include "fem_solver/analysis/static_analysis.hpp"
 #include "fem_solver/analysis/structure_solver.hpp"
+#include "fem_solver/app/structure_coupling.hpp"
 #include "fem_solver/app/structure_output.hpp"
 
 namespace tankfsi::fem {
@@ -126,6 +127,14 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   if (wetted) solver.set_interface(extract_interface(system.model().mesh, "wetted"));
   solver.prepare(c.time_step);
   StructureOutput output(context, c, system);
+  // With a partner program, the fluid's forces load the wetted surface.
+  std::unique_ptr<StructureCoupling> coupling;
+  if (context.partner != MPI_COMM_NULL) {
+    if (!wetted) throw context.config.error_at("structure", "a coupled run needs the element set 'wetted' (the interface)");
+    coupling = std::make_unique<StructureCoupling>(context, solver);
+  }
+  // Implicit windows may be repeated: outputs wait until a window is accepted.
+  const bool repeats = coupling && context.config.text("coupling.scheme") == "implicit";
   auto sample = [&]() {
     StructureTotals totals = support_totals(system.model().mesh, solver.support_forces());
     totals.external_force = solver.total_external_force();
@@ -141,9 +150,11 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   double peak_displacement = 0.0;
   const auto start = std::chrono::steady_clock::now();
   try {
-    while (solver.time() < c.end_time * (1.0 - 1e-12)) {
-      const double dt = std::min(c.time_step, c.end_time - solver.time());
+    while (coupling ? coupling->ongoing() : solver.time() < c.end_time * (1.0 - 1e-12)) {
+      const double dt = std::min(c.time_step, coupling ? coupling->max_time_step() : c.end_time - solver.time());
+      if (coupling) coupling->before_step(dt);
       solver.advance(dt);
+      if (coupling && !coupling->after_step(dt) && repeats) continue;
       peak_displacement = std::max(peak_displacement, solver.largest_displacement());
       if (solver.time() >= next_probe * (1.0 - 1e-12)) {
         const StructureTotals totals = sample();
@@ -164,6 +175,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
     throw std::runtime_error(std::string(e.what()) + " — the last good state is the final snapshot of structure.xdmf");
   }
   output.flush();
+  if (coupling) coupling->finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json summary = model_summary(system, "dynamic");
   summary["steps"] = solver.steps();
@@ -180,7 +192,9 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   summary["peak_displacement_m"] = peak_displacement;
   summary["probes"] = probe_values(c, solver.displacement());
   if (wetted) summary["interface_vertices"] = solver.interface().node_ids.size();
-  return {{"structure", summary}, {"modal", modal_summary(modes)}};
+  nlohmann::json results{{"structure", summary}, {"modal", modal_summary(modes)}};
+  if (coupling) results["coupling"] = coupling->summary();
+  return results;
 }
 
 }  // namespace

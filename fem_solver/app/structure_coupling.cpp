@@ -1,0 +1,145 @@
+#include "fem_solver/app/structure_coupling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "coupling/settings.hpp"
+
+namespace tankfsi::fem {
+
+namespace {
+
+coupling::CouplingSettings settings_of(const ProgramContext& context) {
+  coupling::CouplingSettings settings = coupling::read_coupling_settings(context.config);
+  // A structure step longer than the window could not follow the window's ramp.
+  if (context.config.real("structure.time_step") > settings.time_window)
+    throw context.config.error_at("structure.time_step", "the structure's time step " +
+                                                             std::to_string(context.config.real("structure.time_step")) +
+                                                             " s is longer than coupling.time_window " +
+                                                             std::to_string(settings.time_window) + " s");
+  return settings;
+}
+
+}  // namespace
+
+StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& solver)
+    : solver_(solver),
+      participant_(coupling::Side::structure, settings_of(context), context.comm, context.partner,
+                   coupling::case_fingerprints(context.config)),
+      comm_(context.comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm_, &rank);
+  MPI_Comm_size(comm_, &size);
+  const InterfaceMesh& interface = solver.interface();
+  const std::size_t n = interface.node_ids.size();
+  if (n == 0) throw context.config.error_at("structure", "a coupled run needs a wetted surface (element set 'wetted')");
+
+  // Vertex i is declared by rank i mod size; the all-gather of the forces
+  // puts rank 0's vertices first, then rank 1's, ...
+  counts_.assign(static_cast<std::size_t>(size), 0);
+  for (std::size_t i = 0; i < n; ++i) counts_[i % static_cast<std::size_t>(size)] += 3;
+  displacements_.assign(static_cast<std::size_t>(size), 0);
+  for (std::size_t q = 1; q < counts_.size(); ++q) displacements_[q] = displacements_[q - 1] + counts_[q - 1];
+  for (int q = 0; q < size; ++q)
+    for (std::size_t i = static_cast<std::size_t>(q); i < n; i += static_cast<std::size_t>(size)) order_.push_back(i);
+  std::vector<std::int64_t> ids;
+  std::vector<double> coordinates;
+  for (std::size_t i = static_cast<std::size_t>(rank); i < n; i += static_cast<std::size_t>(size)) {
+    owned_.push_back(i);
+    ids.push_back(interface.node_ids[i]);
+    coordinates.insert(coordinates.end(), interface.positions[i].data(), interface.positions[i].data() + 3);
+  }
+  std::vector<std::array<std::int64_t, 3>> triangles;
+  for (std::size_t t = static_cast<std::size_t>(rank); t < interface.triangles.size(); t += static_cast<std::size_t>(size)) {
+    const auto& tri = interface.triangles[t];
+    triangles.push_back({interface.node_ids[static_cast<std::size_t>(tri[0])], interface.node_ids[static_cast<std::size_t>(tri[1])],
+                         interface.node_ids[static_cast<std::size_t>(tri[2])]});
+  }
+  participant_.set_interface(ids, coordinates, triangles);
+  participant_.exchange_interface();
+
+  owned_values_.assign(3 * owned_.size(), 0.0);
+  gathered_.assign(3 * n, 0.0);
+  loads_.assign(3 * n, 0.0);
+  const std::vector<double> u = solver.interface_displacements();
+  for (std::size_t k = 0; k < owned_.size(); ++k)
+    for (std::size_t c = 0; c < 3; ++c) owned_values_[3 * k + c] = u[3 * owned_[k] + c];
+  participant_.write(coupling::Field::displacement, owned_values_);
+  participant_.initialize();
+
+  // At t = 0 the structure carries the fluid's initial forces.
+  participant_.read(coupling::Field::force, 0.0, owned_values_);
+  MPI_Allgatherv(owned_values_.data(), static_cast<int>(owned_values_.size()), MPI_DOUBLE, gathered_.data(),
+                 counts_.data(), displacements_.data(), MPI_DOUBLE, comm_);
+  for (std::size_t p = 0; p < order_.size(); ++p)
+    for (std::size_t c = 0; c < 3; ++c) loads_[3 * order_[p] + c] = gathered_[3 * p + c];
+  solver_.set_external_loads(loads_);
+  solver_.balance_acceleration();
+
+  if (context.folder && rank == 0)
+    reports_ = std::make_unique<coupling::WindowReportFile>(context.folder->path() / "probes" / "coupling.csv",
+                                                            context.config.real("output.field_interval"));
+}
+
+void StructureCoupling::before_step(double dt) {
+  if (participant_.requires_writing_checkpoint()) solver_.save(checkpoint_);
+  participant_.read(coupling::Field::force, dt, owned_values_);
+  MPI_Allgatherv(owned_values_.data(), static_cast<int>(owned_values_.size()), MPI_DOUBLE, gathered_.data(),
+                 counts_.data(), displacements_.data(), MPI_DOUBLE, comm_);
+  for (std::size_t p = 0; p < order_.size(); ++p)
+    for (std::size_t c = 0; c < 3; ++c) loads_[3 * order_[p] + c] = gathered_[3 * p + c];
+  solver_.set_external_loads(loads_);
+}
+
+bool StructureCoupling::after_step(double dt) {
+  const std::vector<double> u = solver_.interface_displacements();
+  for (std::size_t k = 0; k < owned_.size(); ++k)
+    for (std::size_t c = 0; c < 3; ++c) owned_values_[3 * k + c] = u[3 * owned_[k] + c];
+  participant_.write(coupling::Field::displacement, owned_values_);
+  participant_.advance(dt);
+  if (participant_.requires_reading_checkpoint()) {
+    solver_.restore(checkpoint_);
+    return false;
+  }
+  if (!participant_.window_completed()) return false;
+  if (reports_) reports_->append(participant_.window_reports().back(), participant_.timings());
+  return true;
+}
+
+void StructureCoupling::finish() {
+  participant_.finalize();
+  if (reports_) reports_->flush();
+}
+
+nlohmann::json StructureCoupling::summary() const {
+  const auto& reports = participant_.window_reports();
+  long long iterations = 0;
+  int most = 0, unconverged = 0;
+  std::array<double, 3> given{}, applied{};
+  double largest_window_impulse = 0.0, largest_difference = 0.0;
+  for (const auto& r : reports) {
+    iterations += r.iterations;
+    most = std::max(most, r.iterations);
+    unconverged += r.converged ? 0 : 1;
+    for (std::size_t c = 0; c < 3; ++c) {
+      given[c] += r.impulse_given[c];
+      applied[c] += r.impulse_applied[c];
+      largest_window_impulse = std::max(largest_window_impulse, std::abs(r.impulse_given[c]));
+      largest_difference = std::max(largest_difference, std::abs(r.impulse_applied[c] - r.impulse_given[c]));
+    }
+  }
+  const auto timings = participant_.timings();
+  const double windows = static_cast<double>(std::max<std::size_t>(reports.size(), 1));
+  return {{"windows", reports.size()},
+          {"iterations_per_window", static_cast<double>(iterations) / windows},
+          {"most_iterations", most},
+          {"unconverged_windows", unconverged},
+          {"impulse_given_Ns", given},
+          {"impulse_applied_Ns", applied},
+          {"largest_window_impulse_error_Ns", largest_difference},
+          {"largest_window_impulse_Ns", largest_window_impulse},
+          {"wait_s", timings.wait},
+          {"work_s", timings.work}};
+}
+
+}  // namespace tankfsi::fem

@@ -1,0 +1,53 @@
+#pragma once
+// StructureCoupling: fem_solver as the structure side of a coupled job
+// (METHOD.md §4, coupling/participant.hpp). The wetted surface (element set
+// "wetted") is the interface, vertex for vertex; each structure rank declares
+// every size-th vertex. Every step the fluid's forces, ramped over the window
+// (eq 17), load the interface; every window the interface displacements go to
+// the fluid. Implicit windows roll the Newmark state back to the window start.
+//
+// The structure starts at rest, undeformed, in balance with the fluid's
+// initial forces (its acceleration from them): a liquid present from t = 0
+// loads the wall from t = 0.
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "common/run/program.hpp"
+#include "coupling/participant.hpp"
+#include "coupling/reports/window_report_file.hpp"
+#include "fem_solver/analysis/structure_solver.hpp"
+
+namespace tankfsi::fem {
+
+class StructureCoupling {
+ public:
+  /// Collective over both programs: handshake, interface, initial data. The
+  /// solver must have its interface set.
+  StructureCoupling(ProgramContext& context, StructureSolver& solver);
+
+  [[nodiscard]] bool ongoing() const { return participant_.is_ongoing(); }
+  [[nodiscard]] double max_time_step() const { return participant_.max_time_step(); }
+  /// Before a step of dt: saves the state at a window start (implicit) and
+  /// sets the interface loads at the step's end.
+  void before_step(double dt);
+  /// After the step: sends what the window needs; true when the step ended a
+  /// window that was accepted (false: mid-window, or the window is repeated
+  /// and the state is back at its start).
+  bool after_step(double dt);
+  /// Collective over both programs.
+  void finish();
+  [[nodiscard]] nlohmann::json summary() const;
+
+ private:
+  StructureSolver& solver_;
+  coupling::Participant participant_;
+  std::vector<std::size_t> owned_;           ///< interface vertices this rank declares
+  std::vector<int> counts_, displacements_;  ///< values per rank, for the all-gather of forces
+  std::vector<std::size_t> order_;           ///< gathered position -> interface vertex
+  std::vector<double> owned_values_, gathered_, loads_;
+  StructureSolver::Checkpoint checkpoint_;
+  std::unique_ptr<coupling::WindowReportFile> reports_;
+  MPI_Comm comm_;
+};
+
+}  // namespace tankfsi::fem
