@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/log/progress_line.hpp"
 #include "fem_solver/analysis/modal_analysis.hpp"
 #include "fem_solver/analysis/static_analysis.hpp"
 #include "fem_solver/analysis/structure_solver.hpp"
@@ -149,12 +150,16 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   Eigen::Vector2d peak_shear = Eigen::Vector2d::Zero();
   double peak_displacement = 0.0;
   const auto start = std::chrono::steady_clock::now();
+  int rank = 0;
+  MPI_Comm_rank(context.comm, &rank);
+  ProgressLine progress("fem_solver", c.end_time, rank == 0 && ProgressLine::on_terminal());
   try {
     while (coupling ? coupling->ongoing() : solver.time() < c.end_time * (1.0 - 1e-12)) {
       const double dt = std::min(c.time_step, coupling ? coupling->max_time_step() : c.end_time - solver.time());
       if (coupling) coupling->before_step(dt);
       solver.advance(dt);
       if (coupling && !coupling->after_step(dt) && repeats) continue;
+      progress.update(solver.time(), solver.steps());
       peak_displacement = std::max(peak_displacement, solver.largest_displacement());
       if (solver.time() >= next_probe * (1.0 - 1e-12)) {
         const StructureTotals totals = sample();
@@ -164,6 +169,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
       if (solver.time() >= next_field * (1.0 - 1e-12)) {
         output.write_fields(solver.time(), solver.displacement(), solver.velocity());
         next_field += c.field_interval * std::max(1.0, std::floor((solver.time() - next_field) / c.field_interval) + 1.0);
+        progress.clear();  // the log line takes the line; the progress comes back after it
         context.log.info("t = ", solver.time(), " s, step ", solver.steps(), ", largest displacement ",
                          solver.largest_displacement(), " m");
       }
@@ -174,6 +180,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
     output.write_fields(solver.time() + 1e-9, solver.displacement(), solver.velocity());
     throw std::runtime_error(std::string(e.what()) + " — the last good state is the final snapshot of structure.xdmf");
   }
+  progress.clear();
   output.flush();
   if (coupling) coupling->finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
