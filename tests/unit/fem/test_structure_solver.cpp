@@ -169,7 +169,9 @@ TEST_CASE("a failed step leaves the last good state; the largest displacement ne
 }
 
 // Implicit coupling repeats a window from a checkpoint: after restore() the
-// same loads give the same states, bit for bit, as the first pass did.
+// same loads give the same states as the first pass did: bit for bit on one
+// rank; on several, MUMPS may sum its messages in another order from one solve
+// to the next, so to round-off of the response (1e-12).
 TEST_CASE("a restored checkpoint repeats the steps exactly", "[fem][coupling-api]") {
   const ShellModel model = half_cylinder();
   const tankfsi::ZeroGroundMotion still;
@@ -205,6 +207,6 @@ TEST_CASE("a restored checkpoint repeats the steps exactly", "[fem][coupling-api
   CHECK(solver.steps() == 5);
   const auto again = run_window();
   REQUIRE(largest(first.first) > 0.0);
-  CHECK(largest_difference(first.first, again.first) == 0.0);
-  CHECK(largest_difference(first.second, again.second) == 0.0);
+  CHECK(largest_difference(first.first, again.first) <= 1e-12 * largest(first.first));
+  CHECK(largest_difference(first.second, again.second) <= 1e-12 * largest(first.second));
 }
