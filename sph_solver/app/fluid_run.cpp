@@ -78,7 +78,12 @@ class Outputs {
     last_total_force_ = total;
   }
 
-  void snapshot(double t, const Particles& particles) {
+  /// `density`, `free_surface`: the solver's per-particle diagnostics of the last
+  /// step, written as NaN when they do not belong to `particles` (the last good
+  /// state of a failed run).
+  void snapshot(double t, const Particles& particles, std::vector<double> density, std::vector<double> free_surface) {
+    if (density.size() != particles.size()) density.assign(particles.size(), std::numeric_limits<double>::quiet_NaN());
+    if (free_surface.size() != particles.size()) free_surface = density;
     std::vector<double> positions;
     std::vector<double> velocities;
     positions.reserve(3 * particles.size());
@@ -90,7 +95,9 @@ class Outputs {
       }
     particles_.write_particles(t, ParticleSnapshot{particles.id, positions,
                                                    {NamedField{"velocity", 3, velocities},
-                                                    NamedField{"pressure", 1, particles.pressure}}});
+                                                    NamedField{"pressure", 1, particles.pressure},
+                                                    NamedField{"density", 1, density},
+                                                    NamedField{"free_surface", 1, free_surface}}});
     write_walls(t);
   }
 
@@ -188,7 +195,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   double t = 0.0;
   StepReport last;
   outputs.sample(t, last);
-  outputs.snapshot(t, solver.particles());
+  outputs.snapshot(t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
   double next_probe = c.probe_interval;
   double next_field = c.field_interval;
   const double end = c.end_time;
@@ -220,7 +227,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
         next_probe += c.probe_interval * std::max(1.0, std::floor((t - next_probe) / c.probe_interval) + 1.0);
       }
       if (t >= next_field * (1.0 - 1e-12)) {
-        outputs.snapshot(t, solver.particles());
+        outputs.snapshot(t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
         next_field += c.field_interval * std::max(1.0, std::floor((t - next_field) / c.field_interval) + 1.0);
         context.log.info("t = ", t, " s, step ", stats.steps, ", dt = ", dt, " s, PPE ", last.ppe_iterations,
                          " iterations, max |v| = ", last.max_speed, " m/s");
@@ -228,7 +235,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     }
   } catch (const std::runtime_error& e) {
     outputs.flush();
-    outputs.snapshot(t + 1e-9, last_good);
+    outputs.snapshot(t + 1e-9, last_good, {}, {});
     throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + std::to_string(t) +
                              " s) is the final snapshot of fluid.xdmf");
   }

@@ -9,11 +9,17 @@
 //      the halo (ghost particles within the kernel support plus a margin that
 //      covers the step's motion) is rebuilt.
 //   1. predictor at x^n: v* = v^n + dt (Morris viscosity + F), x* = x^n + dt v*
-//   2. PPE at x*: density rho* (walls included) flags the free surface; source
-//      S = rho0/dt div v* + gamma (rho0 - rho*)/dt^2; solve for P^{n+1} (PETSc)
+//   2. PPE at x*: the kernel-sum density rho* (walls included, corners' overlaps
+//      once) gives each particle near the free surface its air half-space beyond
+//      the surface plane (free_surface.hpp: P = 0 on the plane, not at the
+//      particle; every particle is an unknown); source
+//      S = rho0/dt div v* + gamma (rho_L - rho^n)/dt^2, rho_L the lattice's rest
+//      density and rho^n the density of the state x^n (the air completes it near
+//      the surface); solve for P^{n+1} (PETSc)
 //   3. corrector: v^{n+1} = v* - dt grad P / rho, x^{n+1} = x^n + dt (v^n + v^{n+1})/2
 //   4. shifting (Lind et al. 2012): dr = -D grad C with D = A h |v|max dt, capped at
-//      0.2 L0, none on or next to the free surface; the velocity follows the shift to first
+//      0.2 L0, none on or next to a free-surface particle (density below beta rho0 or
+//      div r below 1.5 / 2.4); the velocity follows the shift to first
 //      order. grad C is taken at x* with the step's neighbour list (one neighbour
 //      search less than at x^{n+1}; the shift is a regularisation, not physics).
 // Wall forces (force of the fluid on each wall vertex) of the step: the viscous
@@ -79,6 +85,13 @@ class FluidSolver {
   [[nodiscard]] long long removed_count() const { return removed_count_; }
   [[nodiscard]] double removed_volume() const { return removed_volume_; }
   [[nodiscard]] long long global_particle_count() const;
+  /// The kernel-sum density rho* (walls included) of each owned particle at the
+  /// PPE's positions x* of the last step, in the order of particles(); NaN before
+  /// the first step.
+  [[nodiscard]] const std::vector<double>& predicted_density() const { return predicted_density_; }
+  /// 1 for each owned particle that was a free-surface (Dirichlet) particle in the
+  /// last step's PPE, else 0; NaN before the first step.
+  [[nodiscard]] const std::vector<double>& free_surface_flags() const { return free_surface_flags_; }
 
   int rebalance_interval = 20;
 
@@ -100,6 +113,8 @@ class FluidSolver {
   StageTimers* timers_;
   StageTimers fallback_timers_;
   std::vector<Eigen::Vector3d> wall_force_;
+  std::vector<double> predicted_density_;
+  std::vector<double> free_surface_flags_;
   long long steps_ = 0;
   long long removed_count_ = 0;
   double removed_volume_ = 0.0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tankfsi::sph {
 namespace {
@@ -28,19 +29,21 @@ double extrapolation_distance(const Neighbourhood& n, const WallContact& c) {
 }
 
 /// The pressure gradient of a particle near walls from its fluid neighbours alone:
-/// their sum covers the part T_fluid = I - sum_w T_w of the moment tensor
+/// their sum covers the part T_fluid = I - sum_w T_w + T_overlaps of the moment tensor
 /// -sum_j V_j x_ij (x) grad_i W_ij (the identity on a full lattice), each wall
-/// holding T_w = -Z1 (r_iw + d1) n n^T normal to it and Z3 along it; so
+/// holding T_w = -Z1 (r_iw + d1) n n^T normal to it and Z3 along it, each corner's
+/// overlap (counted by both walls) T_o = -S; so
 /// grad P = T_fluid^-1 sum_j V_j (P_j - P_i) grad_i W_ij. (In 2D the z row is the identity.)
 /// Falls back to the plain sum if T_fluid is near singular (a particle in a narrow gap).
 Eigen::Vector3d renormalised_gradient(const Neighbourhood& n, std::span<const WallContact> contacts,
-                                      const Eigen::Vector3d& fluid_gradient) {
+                                      std::span<const BoundaryOverlap> overlaps, const Eigen::Vector3d& fluid_gradient) {
   Eigen::Matrix3d fluid_moment = Eigen::Matrix3d::Identity();
   for (const WallContact& c : contacts) {
     const Eigen::Matrix3d normal_part = c.normal * c.normal.transpose();
     fluid_moment -= -c.values.z1 * (c.distance + c.values.depth1) * normal_part;
     fluid_moment -= c.values.z3 * (Eigen::Matrix3d::Identity() - normal_part);
   }
+  for (const BoundaryOverlap& o : overlaps) fluid_moment -= o.second_moment();
   if (n.model.dimension == 2) {
     fluid_moment.row(2).setZero();
     fluid_moment.col(2).setZero();
@@ -50,11 +53,39 @@ Eigen::Vector3d renormalised_gradient(const Neighbourhood& n, std::span<const Wa
   return fluid_moment.inverse() * fluid_gradient;
 }
 
+/// The component of `gradient` along the edge of an overlap (3D; zero in 2D, where
+/// the edge is the z axis and nothing varies along it).
+Eigen::Vector3d along_edge(const BoundaryOverlap& o, const Eigen::Vector3d& gradient) {
+  const Eigen::Vector3d edge = o.normal_a.cross(o.normal_b).normalized();
+  return gradient.dot(edge) * edge;
+}
+
+/// Shares a force on an overlap between its two walls: each its normal component,
+/// half each of the rest.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> split_between_walls(const BoundaryOverlap& o, const Eigen::Vector3d& f) {
+  const Eigen::Vector3d on_a = f.dot(o.normal_a) * o.normal_a;
+  const Eigen::Vector3d on_b = f.dot(o.normal_b) * o.normal_b;
+  const Eigen::Vector3d rest = 0.5 * (f - on_a - on_b);
+  return {on_a + rest, on_b + rest};
+}
+
 }  // namespace
 
 double wall_pressure_gradient(const FluidModel& model, const WallContact& contact, const Eigen::Vector3d& v_star,
                               double dt) {
   return model.density / dt * (v_star - contact.velocity).dot(contact.normal);
+}
+
+double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d& v_star, double dt) {
+  const auto contacts = n.walls.of(i);
+  const auto gradient = [&](int k) { return wall_pressure_gradient(n.model, contacts[at(k)], v_star, dt); };
+  double share = 0.0;
+  for (const WallContact& c : contacts)
+    share += 2.0 * c.values.z2 * wall_pressure_gradient(n.model, c, v_star, dt) * (c.distance + c.values.depth2);
+  for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) share -= o.laplacian_sum(gradient(o.first), gradient(o.second));
+  if (!n.surface.empty())
+    for (const BoundaryOverlap& o : n.surface[at(i)].overlaps()) share -= o.laplacian_sum(gradient(o.first), 0.0);
+  return share;
 }
 
 double laplacian_weight(const Kernel& kernel, const FluidModel& model, double r, double volume) {
@@ -70,6 +101,7 @@ std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const d
       const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
       sum += laplacian_weight(n.kernel, n.model, r, volume) * (pressure[at(i)] - pressure[at(j)]);
     });
+    if (!n.surface.empty()) sum += n.surface[at(i)].laplacian_share() * pressure[at(i)];
     laplacian[at(i)] = sum;
   }
   return laplacian;
@@ -82,6 +114,7 @@ std::vector<double> kernel_density(const Neighbourhood& n, std::span<const doubl
     double sum = mass[at(i)] * self_weight;
     for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d&, double r) { sum += mass[at(j)] * n.kernel.value(r); });
     for (const WallContact& c : n.walls.of(i)) sum += n.model.density * c.values.z0;
+    for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= n.model.density * o.values.q0;
     density[at(i)] = sum;
   }
   return density;
@@ -97,6 +130,7 @@ std::vector<double> position_divergence(const Neighbourhood& n, std::span<const 
     });
     for (const WallContact& c : n.walls.of(i))
       sum += -c.values.z1 * (c.distance + c.values.depth1) + (n.model.dimension - 1) * c.values.z3;
+    for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= o.position_divergence_share();
     divergence[at(i)] = sum;
   }
   return divergence;
@@ -118,11 +152,24 @@ std::vector<Eigen::Vector3d> viscous_acceleration(const Neighbourhood& n, std::s
       const double weight = mass[at(j)] * 2.0 * mu / (rho_i * density[at(j)]) * r * n.kernel.derivative(r) / (r * r + eta2);
       sum += weight * (velocity[at(i)] - velocity[at(j)]);
     });
-    for (const WallContact& c : n.walls.of(i)) {
+    const auto contacts = n.walls.of(i);
+    for (const WallContact& c : contacts) {
       const double extrapolation = 1.0 + c.values.depth2 / extrapolation_distance(n, c);
       const Eigen::Vector3d wall_part = 2.0 * mu / rho_i * c.values.z2 * extrapolation * (velocity[at(i)] - c.velocity);
       sum += wall_part;
       add_wall_force(n.wall_mesh, c, -mass[at(i)] * wall_part, wall_force);
+    }
+    // A corner's overlap carries each wall's no-slip extrapolation, (v_i - v_w)(a + s_A)/a
+    // for wall A: summed over it, 2 M2A / a (v_i - v_wA). One copy is taken out, the
+    // mean of the two (the velocity in the corner follows neither wall's alone).
+    for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) {
+      const WallContact& a = contacts[at(o.first)];
+      const WallContact& b = contacts[at(o.second)];
+      const Eigen::Vector3d part_a = mu / rho_i * o.values.m2a / extrapolation_distance(n, a) * (velocity[at(i)] - a.velocity);
+      const Eigen::Vector3d part_b = mu / rho_i * o.values.m2b / extrapolation_distance(n, b) * (velocity[at(i)] - b.velocity);
+      sum -= part_a + part_b;
+      add_wall_force(n.wall_mesh, a, mass[at(i)] * part_a, wall_force);
+      add_wall_force(n.wall_mesh, b, mass[at(i)] * part_b, wall_force);
     }
     acceleration[at(i)] = sum;
   }
@@ -160,8 +207,23 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
       fluid_gradient += mass[at(j)] / rho_j * (pressure[at(j)] - pressure[at(i)]) * grad;
     });
     const auto contacts = n.walls.of(i);
+    const auto normal_gradient = [&](int k) {
+      return wall_pressure_gradient(n.model, contacts[at(k)], predicted_velocity[at(i)], dt);
+    };
+    const SurfaceContact* air = !n.surface.empty() && n.surface[at(i)].active ? &n.surface[at(i)] : nullptr;
+    if (air != nullptr) {
+      // The air beyond the free surface (free_surface.hpp): its pressure continues
+      // the liquid's linearly to P = 0 on the surface plane. Where it overlaps a wall
+      // the wall's moment (below) already holds the overlap: out of the air's sum.
+      sum -= air->values.z1 * rho0 * p_i * air->pressure_sum_factor() * air->normal;
+      fluid_gradient += air->values.z1 * air->pressure_difference_factor() * pressure[at(i)] * air->normal;
+      for (const BoundaryOverlap& o : air->overlaps())
+        fluid_gradient -= o.pressure_difference_sum(normal_gradient(o.first) * o.normal_a +
+                                                    pressure[at(i)] / air->distance * o.normal_b);
+    }
+    const auto corners = n.walls.overlaps_of(i);
     const Eigen::Vector3d tangential_gradient =
-        contacts.empty() ? Eigen::Vector3d::Zero() : renormalised_gradient(n, contacts, fluid_gradient);
+        contacts.empty() ? Eigen::Vector3d::Zero() : renormalised_gradient(n, contacts, corners, fluid_gradient);
     for (const WallContact& c : contacts) {
       const double wall_pressure = pressure[at(i)] - wall_pressure_gradient(n.model, c, predicted_velocity[at(i)], dt) *
                                                          (c.distance + c.values.depth1);
@@ -171,6 +233,29 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
       sum += wall_part;
       add_wall_force(n.wall_mesh, c, -mass[at(i)] * wall_part, wall_force);
     }
+    // Overlaps, counted by both of their half-spaces: one copy of
+    // -(1/rho0) sum_o V (P_i + P_k) grad W = -(2 P_i Q1 - S G) / rho0 back.
+    const auto one_copy = [&](const BoundaryOverlap& o, const Eigen::Vector3d& g) -> Eigen::Vector3d {
+      const Eigen::Vector3d gradient = g + along_edge(o, tangential_gradient);
+      return o.gradient_sum() * (rho0 * p_i + pressure[at(i)] / rho0) + o.pressure_difference_sum(gradient) / rho0;
+    };
+    for (const BoundaryOverlap& o : corners) {
+      const Eigen::Vector3d part =
+          one_copy(o, normal_gradient(o.first) * o.normal_a + normal_gradient(o.second) * o.normal_b);
+      sum += part;
+      const auto [on_a, on_b] = split_between_walls(o, part);
+      add_wall_force(n.wall_mesh, contacts[at(o.first)], -mass[at(i)] * on_a, wall_force);
+      add_wall_force(n.wall_mesh, contacts[at(o.second)], -mass[at(i)] * on_b, wall_force);
+    }
+    if (air != nullptr)
+      for (const BoundaryOverlap& o : air->overlaps()) {
+        // A contact line: the overlap is air, which the wall's half-space counted as
+        // liquid; the copy comes off the wall.
+        const Eigen::Vector3d part =
+            one_copy(o, normal_gradient(o.first) * o.normal_a + pressure[at(i)] / air->distance * o.normal_b);
+        sum += part;
+        add_wall_force(n.wall_mesh, contacts[at(o.first)], -mass[at(i)] * part, wall_force);
+      }
     acceleration[at(i)] = sum;
   }
   return acceleration;
@@ -185,6 +270,7 @@ std::vector<Eigen::Vector3d> concentration_gradient(const Neighbourhood& n, std:
       sum += mass[at(j)] / density[at(j)] * n.kernel.gradient(x_ij, r);
     });
     for (const WallContact& c : n.walls.of(i)) sum += c.values.z1 * c.normal;
+    for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= o.gradient_sum();
     gradient[at(i)] = sum;
   }
   return gradient;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "sph_solver/isph/fluid_model.hpp"
+#include "sph_solver/isph/surface_contact.hpp"
 #include "sph_solver/isph/wall_contacts.hpp"
 #include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/neighbours/neighbour_list.hpp"
@@ -36,6 +37,9 @@ struct Neighbourhood {
   const WallContacts& walls;                  ///< for the owned particles
   const TriangleMesh& wall_mesh;
   int owned = 0;
+  /// The air beyond the free surface for the owned particles (free_surface.hpp);
+  /// empty: no free-surface terms (a liquid that fills its support everywhere).
+  std::span<const SurfaceContact> surface = {};
 };
 
 /// Kernel-sum density rho_i = sum_j m_j W_ij + m_i W(0) + rho0 sum_w Z0 (eq 11).
@@ -52,8 +56,9 @@ struct Neighbourhood {
 /// (eq 6, with the factor 2): sum_j a_ij (f_i - f_j) approximates lap f.
 [[nodiscard]] double laplacian_weight(const Kernel& kernel, const FluidModel& model, double r, double volume);
 
-/// (lap P)_i = sum_j a_ij (P_i - P_j), V_ij = (m_i + m_j)/(rho_i + rho_j): the PPE's
-/// operator on the liquid (no wall share), for checks and diagnostics.
+/// (lap P)_i = sum_j a_ij (P_i - P_j) + the air's share (free_surface.hpp),
+/// V_ij = (m_i + m_j)/(rho_i + rho_j): the PPE's operator on the liquid (the walls'
+/// share is known and on the right-hand side), for checks and diagnostics.
 [[nodiscard]] std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const double> mass,
                                                      std::span<const double> density,
                                                      std::span<const double> pressure);
@@ -71,14 +76,21 @@ struct Neighbourhood {
                                                       std::span<const double> density,
                                                       std::span<const Eigen::Vector3d> velocity);
 
-/// -(grad P / rho)_i = -sum_j m_j (P_i/rho_i^2 + P_j/rho_j^2) grad_i W_ij (eq 4) and
-/// the wall term -Z1 n (rho0 P_i / rho_i^2 + P_w(d1) / rho0). `wall_force` gets
-/// -m_i times the wall part per vertex.
+/// -(grad P / rho)_i = -sum_j m_j (P_i/rho_i^2 + P_j/rho_j^2) grad_i W_ij (eq 4), the
+/// wall term -Z1 n (rho0 P_i / rho_i^2 + P_w(d1) / rho0) and the air term of the free
+/// surface -Z1 n_s (rho0 P_i / rho_i^2 + P_air(d1) / rho0) (free_surface.hpp).
+/// `wall_force` gets -m_i times the wall part per vertex.
 [[nodiscard]] std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::span<const double> mass,
                                                                  std::span<const double> density,
                                                                  std::span<const double> pressure,
                                                                  std::span<const Eigen::Vector3d> predicted_velocity,
                                                                  double dt, std::vector<Eigen::Vector3d>& wall_force);
+
+/// The walls' known share of the PPE row of owned particle i (the Neumann
+/// condition, to the right-hand side): sum_w 2 Z2 dP/dn (r_iw + d2), less each
+/// corner's overlap with the linear field of the two walls' dP/dn, less the walls'
+/// part of the overlaps of the air with walls (boundary_overlap.hpp).
+[[nodiscard]] double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d& v_star, double dt);
 
 /// dP/dn at a wall contact: rho0 (v*_i - v_wall)·n / dt (see above).
 [[nodiscard]] double wall_pressure_gradient(const FluidModel& model, const WallContact& contact,

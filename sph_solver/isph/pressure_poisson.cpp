@@ -39,7 +39,7 @@ PressurePoisson::~PressurePoisson() {
 
 PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const double> mass,
                                       std::span<const double> density, std::span<const std::int64_t> global_index,
-                                      std::span<const unsigned char> free_surface, std::span<const double> source,
+                                      std::span<const unsigned char> dirichlet, std::span<const double> source,
                                       std::span<double> pressure) {
   const int owned = n.owned;
   const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
@@ -54,7 +54,7 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
     const std::size_t diagonal_slot = values_.size();
     columns_.push_back(static_cast<PetscInt>(global_index[at(i)]));
     values_.push_back(1.0);
-    if (free_surface[at(i)] == 0) {
+    if (dirichlet[at(i)] == 0) {
       double diagonal = 0.0;
       const Eigen::Vector3d& x_i = n.position[at(i)];
       for (const int j : n.neighbours.neighbours_of(i)) {
@@ -62,11 +62,12 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
         const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
         const double a = laplacian_weight(n.kernel, n.model, r, volume);
         diagonal -= a;
-        if (free_surface[at(j)] != 0) continue;
+        if (dirichlet[at(j)] != 0) continue;
         columns_.push_back(static_cast<PetscInt>(global_index[at(j)]));
         values_.push_back(a);
         ++(j < owned ? diagonal_nonzeros_ : off_diagonal_nonzeros_)[at(i)];
       }
+      if (!n.surface.empty()) diagonal -= n.surface[at(i)].laplacian_share();
       // An isolated particle (no neighbours, all on the surface) would give a zero row.
       values_[diagonal_slot] = diagonal > 0.0 ? diagonal : 1.0;
     }
@@ -97,7 +98,7 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
     check(VecGetArray(rhs, &b), "VecGetArray");
     check(VecGetArray(solution, &x), "VecGetArray");
     for (int i = 0; i < owned; ++i) {
-      const bool surface = free_surface[at(i)] != 0;
+      const bool surface = dirichlet[at(i)] != 0;
       b[i] = surface ? 0.0 : -source[at(i)];
       x[i] = surface ? 0.0 : pressure[at(i)];
     }

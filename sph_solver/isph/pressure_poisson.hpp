@@ -13,9 +13,13 @@
 // The rows are multiplied by -1: a_ij <= 0, so the matrix is then an M-matrix,
 // symmetric positive definite wherever every cluster of particles reaches a free
 // surface — which suits CG and algebraic multigrid.
-// Free-surface particles (rho* < beta rho0) have the Dirichlet value P = 0: an
-// identity row, and their columns are left out of the other rows (value 0 moved to
-// the right-hand side), which keeps the matrix symmetric.
+// The air beyond the free surface (free_surface.hpp) adds to the diagonal only:
+// sum_air a (P_i - P_air) = 2 Z2 (1 + d2/delta) P_i, with P_air the ghost pressure
+// that reaches 0 on the surface; the matrix stays symmetric, and is definite once
+// any particle has such a term.
+// Particles flagged `dirichlet` have the value P = 0: an identity row, and their
+// columns are left out of the other rows (value 0 moved to the right-hand side),
+// which keeps the matrix symmetric.
 #include <mpi.h>
 #include <petscksp.h>
 
@@ -43,11 +47,11 @@ class PressurePoisson {
   PressurePoisson& operator=(const PressurePoisson&) = delete;
 
   /// Solves for the owned particles' pressure; `pressure` holds the warm start on
-  /// entry (owned rows). `global_index`, `density`, `mass`, `free_surface` cover owned
+  /// entry (owned rows). `global_index`, `density`, `mass`, `dirichlet` cover owned
   /// and ghost particles; `source` the owned ones (S_i with the wall share already
   /// subtracted). Throws std::runtime_error when the solver does not converge.
   PpeSolveReport solve(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
-                       std::span<const std::int64_t> global_index, std::span<const unsigned char> free_surface,
+                       std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet,
                        std::span<const double> source, std::span<double> pressure);
 
  private:

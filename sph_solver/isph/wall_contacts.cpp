@@ -39,6 +39,7 @@ WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& k
     : mesh_(std::make_unique<TriangleMesh>(std::move(mesh))),
       index_(*mesh_),
       table_(kernel, model.spacing),
+      corner_table_(kernel, model.spacing),
       support_radius_(kernel.support_radius()),
       dimension_(model.dimension),
       velocities_(mesh_->vertex_count(), Eigen::Vector3d::Zero()) {
@@ -66,6 +67,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   const double crossing_tolerance = 0.5 * walls.table().spacing();
   WallContacts result;
   result.offsets.reserve(positions.size() + 1);
+  result.overlap_offsets.reserve(positions.size() + 1);
   std::vector<WallHit> hits;
   for (const Eigen::Vector3d& x : positions) {
     hits.clear();
@@ -102,6 +104,20 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       result.contacts.push_back(contact);
     }
     result.offsets.push_back(static_cast<int>(result.contacts.size()));
+    // Corners: orthogonal pairs of the particle's walls overlap behind both.
+    const auto contacts = std::span<const WallContact>(result.contacts).subspan(first_contact);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      for (std::size_t l = k + 1; l < contacts.size(); ++l) {
+        if (!(std::abs(contacts[k].normal.dot(contacts[l].normal)) < BoundaryOverlap::orthogonal_cosine)) continue;
+        BoundaryOverlap overlap;
+        overlap.first = static_cast<int>(k);
+        overlap.second = static_cast<int>(l);
+        overlap.normal_a = contacts[k].normal;
+        overlap.normal_b = contacts[l].normal;
+        overlap.values = walls.corner_table().at(contacts[k].distance, contacts[l].distance);
+        if (overlap.values.q0 > 0.0 || overlap.values.q2 < 0.0) result.overlaps.push_back(overlap);
+      }
+    result.overlap_offsets.push_back(static_cast<int>(result.overlaps.size()));
   }
   return result;
 }

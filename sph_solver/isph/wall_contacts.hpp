@@ -10,9 +10,9 @@
 // cos > 0.8) to a contact already taken — the same flat or gently curved wall, whose
 // nearest triangle already stands for it. A triangle whose plane the particle lies
 // behind (the far side of a thin plate) is not a contact. The half-spaces of two
-// walls meeting at a corner overlap behind the corner; that overlap is counted
-// twice (a known limitation of per-wall tables: the unit tests leave corner
-// particles out of their checks; the hydrostatic validation covers the whole tank).
+// walls meeting at a corner overlap behind the corner; for orthogonal walls the
+// overlap is taken out once with the corner kernel table (boundary_overlap.hpp), so
+// every virtual particle counts once; overlaps of walls at other angles are not.
 //
 // Distance (eq 15): the true point-triangle distance to the nearest triangle of the
 // wall, the normal that of its plane. A particle that has crossed a wall by less
@@ -32,9 +32,11 @@
 #include <span>
 #include <vector>
 
+#include "sph_solver/isph/boundary_overlap.hpp"
 #include "sph_solver/isph/fluid_model.hpp"
 #include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/walls/triangle_index.hpp"
+#include "sph_solver/walls/corner_kernel_table.hpp"
 #include "sph_solver/walls/triangle_mesh.hpp"
 #include "sph_solver/walls/wall_kernel_table.hpp"
 
@@ -50,6 +52,7 @@ class WallModel {
   [[nodiscard]] const TriangleMesh& mesh() const { return *mesh_; }
   [[nodiscard]] const TriangleIndex& index() const { return index_; }
   [[nodiscard]] const WallKernelTable& table() const { return table_; }
+  [[nodiscard]] const CornerKernelTable& corner_table() const { return corner_table_; }
   /// Mean curvature per vertex, sharp features zeroed (see above).
   [[nodiscard]] const std::vector<double>& curvature() const { return curvature_; }
   [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_velocities() const { return velocities_; }
@@ -65,6 +68,7 @@ class WallModel {
   std::unique_ptr<TriangleMesh> mesh_;  ///< on the heap: the index points to it
   TriangleIndex index_;
   WallKernelTable table_;
+  CornerKernelTable corner_table_;
   double support_radius_;
   int dimension_;
   std::vector<double> curvature_;
@@ -81,15 +85,25 @@ struct WallContact {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();     ///< wall velocity at the closest point
 };
 
-/// The contacts of particles 0 .. n-1 in CSR form.
+/// The contacts of particles 0 .. n-1, and the overlaps of orthogonal pairs of them
+/// (corners: first and second index the particle's own contacts), in CSR form.
 struct WallContacts {
   std::vector<int> offsets{0};
   std::vector<WallContact> contacts;
+  std::vector<int> overlap_offsets{0};
+  std::vector<BoundaryOverlap> overlaps;
 
   [[nodiscard]] std::span<const WallContact> of(int i) const {
-    const auto begin = static_cast<std::size_t>(offsets[static_cast<std::size_t>(i)]);
-    const auto end = static_cast<std::size_t>(offsets[static_cast<std::size_t>(i) + 1]);
-    return std::span<const WallContact>(contacts).subspan(begin, end - begin);
+    return std::span<const WallContact>(contacts).subspan(begin(offsets, i), count(offsets, i));
+  }
+  [[nodiscard]] std::span<const BoundaryOverlap> overlaps_of(int i) const {
+    return std::span<const BoundaryOverlap>(overlaps).subspan(begin(overlap_offsets, i), count(overlap_offsets, i));
+  }
+
+ private:
+  static std::size_t begin(const std::vector<int>& o, int i) { return static_cast<std::size_t>(o[static_cast<std::size_t>(i)]); }
+  static std::size_t count(const std::vector<int>& o, int i) {
+    return static_cast<std::size_t>(o[static_cast<std::size_t>(i) + 1] - o[static_cast<std::size_t>(i)]);
   }
 };
 

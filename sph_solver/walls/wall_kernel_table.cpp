@@ -9,9 +9,7 @@
 
 namespace tankfsi::sph {
 
-namespace {
-
-void require_spacing(const Kernel& kernel, double spacing) {
+void require_table_spacing(const Kernel& kernel, double spacing) {
   if (!std::isfinite(spacing) || spacing <= 0.0) {
     throw std::invalid_argument("wall kernel table: spacing must be positive and finite");
   }
@@ -22,16 +20,35 @@ void require_spacing(const Kernel& kernel, double spacing) {
   }
 }
 
+namespace {
+
+/// L0^D sum_j W(|x_j|) over the lattice sites x_j = L0 (a, b, c) inside the support.
+double full_lattice_share(const Kernel& kernel, double spacing) {
+  const double support = kernel.support_radius();
+  const int reach = static_cast<int>(support / spacing) + 1;
+  const int reach_c = kernel.dimension() == 2 ? 0 : reach;
+  double sum = 0.0;
+  for (int a = -reach; a <= reach; ++a)
+    for (int b = -reach; b <= reach; ++b)
+      for (int c = -reach_c; c <= reach_c; ++c) {
+        const double r = spacing * std::sqrt(static_cast<double>(a * a + b * b + c * c));
+        if (r < support) sum += kernel.value(r);
+      }
+  return sum * std::pow(spacing, kernel.dimension());
+}
+
 }  // namespace
 
 WallKernelTable::WallKernelTable(const Kernel& kernel, double spacing, int intervals)
     : cutoff_(kernel.support_radius()), spacing_(spacing) {
-  require_spacing(kernel, spacing);
+  require_table_spacing(kernel, spacing);
   if (intervals < 1) throw std::invalid_argument("wall kernel table: at least one interval is needed");
   inverse_step_ = intervals / cutoff_;
   nodes_.reserve(static_cast<std::size_t>(intervals) + 1);
   // The last node, at the cutoff, sums to zero: every virtual particle is outside the support.
   for (int k = 0; k <= intervals; ++k) nodes_.push_back(sum_lattice(kernel, spacing, cutoff_ * k / intervals));
+  // A particle at L0/2 above a wall completes, with Z0, the full lattice around it.
+  lattice_share_ = full_lattice_share(kernel, spacing);
 }
 
 WallKernelValues WallKernelTable::at(double distance) const {
@@ -55,8 +72,22 @@ WallKernelValues WallKernelTable::at(double distance) const {
   return values_of(node);
 }
 
+double WallKernelTable::distance_for_share(double share) const {
+  if (std::isnan(share)) return std::numeric_limits<double>::quiet_NaN();
+  if (share >= nodes_.front().z[0]) return 0.0;
+  if (share <= 0.0) return cutoff_;
+  // Z0 at the nodes is non-increasing: the first node at or below `share`, by bisection.
+  const auto below = std::partition_point(nodes_.begin(), nodes_.end(),
+                                          [share](const Node& node) { return node.z[0] > share; });
+  const auto k = static_cast<std::size_t>(below - nodes_.begin());  // 1 <= k < size: Z0(0) > share > 0 = Z0(cutoff)
+  const double upper = nodes_[k - 1].z[0];
+  const double lower = nodes_[k].z[0];
+  const double t = upper > lower ? (upper - share) / (upper - lower) : 0.0;
+  return (static_cast<double>(k - 1) + t) / inverse_step_;
+}
+
 WallKernelValues WallKernelTable::direct_sum(const Kernel& kernel, double spacing, double distance) {
-  require_spacing(kernel, spacing);
+  require_table_spacing(kernel, spacing);
   if (!(distance >= 0.0)) throw std::invalid_argument("wall kernel table: distance must be >= 0 (and not NaN)");
   return values_of(sum_lattice(kernel, spacing, distance));
 }

@@ -40,6 +40,11 @@
 
 namespace tankfsi::sph {
 
+/// Throws std::invalid_argument unless the lattice spacing of a kernel table is
+/// positive and finite and the support spans at most
+/// WallKernelTable::max_support_in_spacings of it (shared by the wall and corner tables).
+void require_table_spacing(const Kernel& kernel, double spacing);
+
 /// The wall terms of one particle at one distance from a flat wall (see above).
 struct WallKernelValues {
   double z0 = 0, z1 = 0, z2 = 0;
@@ -74,10 +79,24 @@ class WallKernelTable {
   /// (never a silent number).
   [[nodiscard]] WallKernelValues at(double distance) const;
 
+  /// The inverse of Z0: the distance d at which the table's Z0(d) equals `share`,
+  /// interpolated like at(), so at(distance_for_share(z)).z0 == z up to round-off.
+  /// Z0 decreases strictly while the first virtual layer is in the support (every
+  /// W(r) decreases as the particle moves away), so the inverse is unique there:
+  /// share >= Z0(0) gives 0, share <= 0 gives cutoff(); NaN gives NaN. This reads
+  /// the distance to a free surface from a particle's density deficit (free_surface.hpp).
+  [[nodiscard]] double distance_for_share(double share) const;
+
   /// The exact lattice sums at distance d >= 0 (d = +inf gives zeros): the table's
   /// nodes, and the reference of the tests. Throws std::invalid_argument for a
   /// negative or NaN distance and for a spacing the constructor refuses.
   [[nodiscard]] static WallKernelValues direct_sum(const Kernel& kernel, double spacing, double distance);
+
+  /// L0^D sum_j W over a full lattice, the particle itself included: the kernel sum
+  /// (over rho0) of a particle inside the initial lattice, which the fluid part and
+  /// Z0 add up to beside a flat wall. Not exactly 1: 1 - 6e-5 for the quintic spline
+  /// at h = 1.2 L0 (the lattice is a quadrature of the kernel's integral).
+  [[nodiscard]] double lattice_share() const { return lattice_share_; }
 
   /// The support radius: beyond it no virtual particle is a neighbour.
   [[nodiscard]] double cutoff() const { return cutoff_; }
@@ -101,6 +120,7 @@ class WallKernelTable {
 
   double cutoff_;
   double spacing_;
+  double lattice_share_ = 0.0;
   double inverse_step_;  ///< intervals / cutoff
   std::vector<Node> nodes_;
 };

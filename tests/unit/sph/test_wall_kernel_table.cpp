@@ -171,6 +171,8 @@ TEST_CASE("wall table completes the fluid lattice to the full lattice", "[wall_t
       CHECK(std::abs(fluid[m] + z_of(table)[m] - full[m]) <= 1e-4 * scale[m]);
     }
     CHECK(std::abs(full[1]) <= 1e-12 * scale[1]);
+    // The table's own full-lattice share is the same sum (other summation order).
+    CHECK(WallKernelTable(kernel, spacing).lattice_share() == Approx(full[0]).epsilon(1e-12));
     // The lateral components of the virtual particles' gradient cancel: Z1 n is the whole of it.
     CHECK(std::abs(virtual_gradient.dot(normal) - exact.z1) <= 1e-12 * scale[1]);
     CHECK((virtual_gradient - virtual_gradient.dot(normal) * normal).norm() <= 1e-12 * scale[1]);
@@ -411,4 +413,34 @@ TEST_CASE("wall table: crossed particles and bad arguments", "[wall_table]") {
   CHECK(WallKernelTable(kernel, spacing, 1).intervals() == 1);
   CHECK_THROWS_AS(WallKernelTable::direct_sum(kernel, spacing, -1e-12), std::invalid_argument);
   CHECK_THROWS_AS(WallKernelTable::direct_sum(kernel, spacing, std::nan("")), std::invalid_argument);
+}
+
+TEST_CASE("wall table: the distance at which Z0 takes a given share", "[wall_table]") {
+  for (const Setting& s : settings()) {
+    const Kernel kernel = make_kernel(s);
+    const WallKernelTable table(kernel, spacing);
+    INFO(kernel_name(s.type) << " " << s.dimension << "D h/L0 = " << s.h_over_dx);
+    // Round trip through the interpolated table wherever Z0 > 0 (it falls strictly
+    // there): at(distance_for_share(Z0(d))) = Z0(d), and the distance is d itself.
+    // 1e-12: round-off of the linear interpolation and its inverse.
+    const double last_reach = table.cutoff() - 0.5 * spacing;
+    for (int k = 0; k < 500; ++k) {
+      const double d = 0.999 * last_reach * k / 500.0;
+      const double share = table.at(d).z0;
+      const double found = table.distance_for_share(share);
+      CHECK(table.at(found).z0 == Approx(share).epsilon(1e-12));
+      CHECK(found == Approx(d).margin(1e-12 * table.cutoff()));
+    }
+    // Against the exact lattice sums: a half-space missing at 1.5 L0 (the second layer
+    // under a flat surface) is found within the table's interpolation error.
+    const double second_layer = 1.5 * spacing;
+    const double exact_share = WallKernelTable::direct_sum(kernel, spacing, second_layer).z0;
+    CHECK(table.distance_for_share(exact_share) == Approx(second_layer).epsilon(1e-3));
+    // Outside the range: more than a half-space missing is at the plane, nothing missing beyond the support.
+    CHECK(table.distance_for_share(table.at(0.0).z0) == 0.0);
+    CHECK(table.distance_for_share(1.0) == 0.0);
+    CHECK(table.distance_for_share(0.0) == table.cutoff());
+    CHECK(table.distance_for_share(-0.1) == table.cutoff());
+    CHECK(std::isnan(table.distance_for_share(std::nan(""))));
+  }
 }

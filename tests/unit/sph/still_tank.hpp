@@ -1,0 +1,73 @@
+#pragma once
+// A 2D tank of water at rest on its initial lattice, for the tests of the ISPH sums:
+// 0.6 m wide, filled to 0.4 m (L0 = 0.02 m, quintic spline, h = 1.2 L0), with the
+// hydrostatic pressure rho g (level - y), its neighbour list and wall contacts.
+#include <cstddef>
+#include <vector>
+
+#include "sph_solver/isph/particle_terms.hpp"
+#include "sph_solver/neighbours/cell_list.hpp"
+#include "sph_solver/particles/filling.hpp"
+#include "sph_solver/walls/tank_meshes.hpp"
+
+namespace tankfsi::test {
+
+using namespace tankfsi::sph;
+
+inline constexpr double width = 0.6;
+inline constexpr double level = 0.4;
+inline constexpr double g = 9.81;
+
+inline FluidModel water() {
+  FluidModel m;
+  m.dimension = 2;
+  m.kernel = KernelType::quintic_spline;
+  m.spacing = 0.02;
+  m.smoothing_length = 1.2 * m.spacing;
+  m.density = 1000.0;
+  m.viscosity = 1e-3;
+  return m;
+}
+
+/// A tank filled to `level` at rest with hydrostatic pressure, and its neighbourhood.
+struct Tank {
+  FluidModel model = water();
+  Kernel kernel{model.kernel, 2, model.smoothing_length};
+  WallModel walls{make_rectangular_tank_2d(width, 0.6, 0.2, 0.04), model, kernel};
+  Particles particles;
+  NeighbourList neighbours;
+  WallContacts contacts;
+  std::vector<double> density;
+
+  Tank() {
+    FillSpec spec;
+    spec.spacing = model.spacing;
+    spec.density = model.density;
+    spec.fill_level = level;
+    spec.dimension = 2;
+    spec.hydrostatic_pressure = true;
+    spec.gravity = g;
+    particles = fill_tank(walls.mesh(), spec);
+    CellList cells(2);
+    cells.build(particles.position, kernel.support_radius());
+    neighbours = cells.neighbour_list();
+    contacts = find_wall_contacts(walls, particles.position, 2);
+    density = kernel_density(view(), particles.mass);
+  }
+
+  /// The sums' view of the tank; `surface`: the air beyond the free surface, if any.
+  [[nodiscard]] Neighbourhood view(std::span<const SurfaceContact> surface = {}) const {
+    return {kernel, model, particles.position, neighbours, contacts, walls.mesh(), particles.count(), surface};
+  }
+  [[nodiscard]] double support() const { return kernel.support_radius(); }
+  /// Away from the free surface (its truncated kernel is not the walls' business).
+  [[nodiscard]] bool submerged(int i) const { return particles.position[static_cast<std::size_t>(i)].y() < level - support(); }
+  [[nodiscard]] bool near_floor(int i) const { return particles.position[static_cast<std::size_t>(i)].y() < support(); }
+  [[nodiscard]] bool near_side(int i) const {
+    const double x = particles.position[static_cast<std::size_t>(i)].x();
+    return x < support() || x > width - support();
+  }
+};
+
+
+}  // namespace tankfsi::test

@@ -1,0 +1,149 @@
+// The free surface as air beyond a plane (free_surface.hpp) on the still tank's
+// lattice, against the geometry and the hydrostatic pressure rho g (level - y):
+//  - the distance and normal read from each particle's density deficit are those of
+//    the plane y = level (the top of the highest layer);
+//  - with the air in the PPE, the hydrostatic pressure solves it up to the surface
+//    (no Dirichlet particle: the top layer comes out at rho g L0/2);
+//  - with the air in the pressure gradient, every layer under the surface is in
+//    equilibrium, where the bare symmetric sum holds the top layer with 91 % of its
+//    weight and pushes the second with 108 %;
+//  - the air's forces on the liquid sum to zero, so the walls carry the whole weight.
+// Particles within a kernel support of the side walls are left out of the checks
+// (the corner of air and wall is counted twice: free_surface.hpp).
+#include <catch2/catch.hpp>
+
+#include <mpi.h>
+
+#include <cmath>
+#include <vector>
+
+#include "sph_solver/isph/free_surface.hpp"
+#include "sph_solver/isph/particle_terms.hpp"
+#include "sph_solver/isph/pressure_poisson.hpp"
+#include "still_tank.hpp"
+
+using namespace tankfsi::sph;
+using Eigen::Vector3d;
+using namespace tankfsi::test;
+
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+/// Depth of particle i below the surface plane, in layers of L0 (0.5 for the top layer).
+double depth_in_layers(const Tank& tank, int i) {
+  return (level - tank.particles.position[at(i)].y()) / tank.model.spacing;
+}
+
+struct AirTank : Tank {
+  std::vector<SurfaceContact> air = surface_contacts(view(), particles.mass, density, walls);
+  std::vector<double> completed = completed_density(density, air, model.density * walls.table().lattice_share());
+};
+
+}  // namespace
+
+TEST_CASE("the air beyond a flat surface is found at its plane", "[free_surface]") {
+  const AirTank tank;
+  int top = 0, second = 0;
+  for (int i = 0; i < tank.particles.count(); ++i) {
+    if (tank.near_side(i)) continue;
+    const SurfaceContact& c = tank.air[at(i)];
+    const double depth = depth_in_layers(tank, i);
+    if (depth > 2.0) {
+      // A surface farther than 2 L0 is not looked for (the bulk's density noise).
+      REQUIRE_FALSE(c.active);
+      continue;
+    }
+    REQUIRE(c.active);
+    // 1e-3 L0: the table's interpolation error of Z0 (1.5e-5 of Z0(0)) over its slope.
+    CHECK(c.distance / tank.model.spacing == Approx(depth).margin(1e-3));
+    CHECK((c.normal - Vector3d(0.0, -1.0, 0.0)).norm() < 1e-9);
+    CHECK(tank.completed[at(i)] == tank.model.density * tank.walls.table().lattice_share());
+    (depth < 1.0 ? top : second) += 1;
+  }
+  CHECK(top > 20);
+  CHECK(second > 20);
+}
+
+TEST_CASE("with the air the hydrostatic pressure solves the PPE up to the surface", "[free_surface]") {
+  const AirTank tank;
+  const auto view = tank.view(tank.air);
+  const int n = tank.particles.count();
+  // At rest: v* = -g dt e_y, no divergence, no density error; the walls' Neumann
+  // share rho0 g is the whole right-hand side (as in FluidSolver::step).
+  const double dt = 1e-3;
+  const Vector3d v_star(0.0, -g * dt, 0.0);
+  std::vector<double> source(at(n), 0.0);
+  for (int i = 0; i < n; ++i) source[at(i)] = -wall_laplacian_share(view, i, v_star, dt);
+  std::vector<std::int64_t> index(at(n));
+  for (int i = 0; i < n; ++i) index[at(i)] = i;
+  std::vector<double> pressure(at(n), 0.0);
+  const std::vector<unsigned char> no_dirichlet(at(n), 0);
+  PressurePoisson ppe(MPI_COMM_SELF, "-ppe_ksp_rtol 1e-12");
+  ppe.solve(view, tank.particles.mass, tank.completed, index, no_dirichlet, source, pressure);
+  double worst_top = 0.0, worst_below = 0.0, worst_side = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double exact = tank.model.density * g * (level - tank.particles.position[at(i)].y());
+    const double error = std::abs(pressure[at(i)] - exact) / (tank.model.density * g * tank.model.spacing);
+    double& worst = tank.near_side(i) ? worst_side : depth_in_layers(tank, i) < 1.0 ? worst_top : worst_below;
+    worst = std::max(worst, error);
+  }
+  INFO("worst |P - rho g (level - y)| / (rho g L0): top layer " << worst_top << ", below " << worst_below
+                                                                << ", beside the side walls " << worst_side);
+  // 1e-2 rho g L0 (2 Pa; 2 % of the top layer's 98 Pa, 0.05 % of the floor's 3900 Pa):
+  // the corners where walls and air overlap (counted twice, see free_surface.hpp)
+  // perturb the solution everywhere a little; on a periodic lattice the error is 1e-5.
+  CHECK(worst_top < 1e-2);
+  CHECK(worst_below < 1e-2);
+  CHECK(worst_side < 1e-2);
+}
+
+TEST_CASE("with the air every layer under the surface is in equilibrium", "[free_surface]") {
+  const AirTank tank;
+  const double dt = 1e-3;
+  std::vector<Vector3d> v_star(tank.particles.size(), Vector3d(0.0, -g * dt, 0.0));
+  std::vector<Vector3d> bare_force(tank.walls.mesh().vertex_count(), Vector3d::Zero());
+  std::vector<Vector3d> wall_force = bare_force;
+  const auto bare = pressure_acceleration(tank.view(), tank.particles.mass, tank.completed, tank.particles.pressure,
+                                          v_star, dt, bare_force);
+  const auto with_air = pressure_acceleration(tank.view(tank.air), tank.particles.mass, tank.completed,
+                                              tank.particles.pressure, v_star, dt, wall_force);
+  double worst_surface = 0.0, worst_side = 0.0, worst_elsewhere = 0.0, bare_top = 0.0, bare_second = 0.0;
+  double weight = 0.0;
+  int top = 0, second = 0;
+  for (int i = 0; i < tank.particles.count(); ++i) {
+    weight += tank.particles.mass[at(i)] * g;
+    const double residual = (with_air[at(i)] + Vector3d(0.0, -g, 0.0)).norm() / g;
+    const double depth = depth_in_layers(tank, i);
+    double& worst = tank.near_side(i) ? worst_side : depth < 3.0 ? worst_surface : worst_elsewhere;
+    worst = std::max(worst, residual);
+    if (tank.near_side(i)) continue;
+    if (depth < 1.0) {
+      bare_top += bare[at(i)].y() / g;
+      ++top;
+    } else if (depth < 2.0) {
+      bare_second += bare[at(i)].y() / g;
+      ++second;
+    }
+  }
+  INFO("worst |a_p + g| / g with the air: top three layers " << worst_surface << ", beside the side walls (corners "
+       "and contact lines included) " << worst_side << ", elsewhere " << worst_elsewhere
+       << "; bare symmetric sum: top layer " << bare_top / top << " g, second " << bare_second / second << " g");
+  // 2.5e-3: the third layer (air share 1e-4 at 2.5 L0, not looked for) is left with
+  // 2.1e-3, the floor layer with 1.6e-3 (table interpolation), the bulk with the
+  // lattice's own 5e-4; without the air the top and second layers are off by 9 % and
+  // 8 % (checked, so the test sees them), without the corner overlaps the corner
+  // particle by 8 g.
+  CHECK(worst_surface < 2.5e-3);
+  CHECK(worst_side < 2.5e-3);
+  CHECK(worst_elsewhere < 2.5e-3);
+  CHECK(bare_top / top == Approx(0.91).margin(0.01));
+  CHECK(bare_second / second == Approx(1.08).margin(0.01));
+  // The walls carry the liquid's weight: the air's forces on the liquid sum to
+  // (nearly) zero. 1e-3: the lattice's quadrature error of the bulk (6e-4).
+  Vector3d total = Vector3d::Zero();
+  for (const Vector3d& f : wall_force) total += f;
+  INFO("wall force " << total.transpose() << " N/m against the weight " << weight);
+  CHECK(-total.y() == Approx(weight).epsilon(1e-3));
+  CHECK(std::abs(total.x()) < 1e-9 * weight);
+}
