@@ -118,7 +118,12 @@ int main(int argc, char** argv) {
   check(p, tankfsi_finalize(p), "finalize");
 
   int status = 0;
-  printf("modal_structure: t = %.4f s, modal displacement q = %.9e m\n", tankfsi_time(p), q);
+  /* The last force read, summed radially: for a liquid at rest the ring load
+   * rho g pi R H^2 of the wetted height H. */
+  double radial = 0.0;
+  for (size_t i = 0; i < n; ++i) radial += (force[3 * i] * xyz[3 * i] + force[3 * i + 1] * xyz[3 * i + 1]) / radius;
+  printf("modal_structure: t = %.4f s, modal displacement q = %.9e m, radial force on the wall %.6e N\n",
+         tankfsi_time(p), q, radial);
   if (checking) {
     /* Step response of the damped mode from rest under f* = FX sum_i phi_i . e_x. */
     double f_star = 0.0;

@@ -114,7 +114,8 @@ NearestProjection::NearestProjection(const InterfaceMesh& mesh, std::span<const 
     const auto [t, closest] = grid.nearest(p);
     weights_[i].vertices = mesh.triangles[static_cast<std::size_t>(t)];
     for (int k = 0; k < 3; ++k) weights_[i].weights[static_cast<std::size_t>(k)] = closest.barycentric[k];
-    max_distance_ = std::max(max_distance_, std::sqrt(closest.squared_distance));
+    distances_.push_back(std::sqrt(closest.squared_distance));
+    max_distance_ = std::max(max_distance_, distances_.back());
   }
 }
 

@@ -26,6 +26,8 @@ class NearestProjection {
   /// The largest distance of an own vertex from the mesh (m): a check that
   /// the two surfaces are the same surface.
   [[nodiscard]] double max_distance() const { return max_distance_; }
+  /// Each point's distance from the mesh (m).
+  [[nodiscard]] const std::vector<double>& distances() const { return distances_; }
 
   /// Mesh values (3 per mesh vertex) -> own values (3 per point).
   void consistent(std::span<const double> mesh_values, std::span<double> point_values) const;
@@ -40,6 +42,7 @@ class NearestProjection {
   std::vector<Projection> weights_;
   std::size_t mesh_vertices_ = 0;
   double max_distance_ = 0.0;
+  std::vector<double> distances_;
 };
 
 }  // namespace tankfsi::coupling

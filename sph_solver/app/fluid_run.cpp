@@ -1,5 +1,7 @@
 #include "sph_solver/app/fluid_run.hpp"
 
+#include "sph_solver/app/fluid_coupling.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <map>
@@ -190,6 +192,9 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   solver.rebalance_interval = c.rebalance_interval;
   context.log.info("fluid: ", solver.global_particle_count(), " particles, ", solver.walls().mesh().triangle_count(),
                    " wall triangles, h = ", c.model.smoothing_length, " m, kernel ", kernel_name(c.model.kernel));
+  // With a partner program, the walls on the structure's wetted surface move with it.
+  std::unique_ptr<FluidCoupling> coupling;
+  if (context.partner != MPI_COMM_NULL) coupling = std::make_unique<FluidCoupling>(context, solver);
   Outputs outputs(context, c, solver);
   RunStatistics stats;
   double t = 0.0;
@@ -202,7 +207,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   Particles last_good = solver.particles();
   double speed = solver.max_speed();  // then each step's report carries it
   try {
-    while (t < end * (1.0 - 1e-12)) {
+    while (coupling ? coupling->ongoing() : t < end * (1.0 - 1e-12)) {
       const Eigen::Vector3d force = c.model.body_force(motion.acceleration(t));
       const auto limits = time_step_limits(c.model, c.cfl_number, c.adaptive_time_step ? c.max_time_step : c.fixed_time_step,
                                            speed, force.norm());
@@ -216,10 +221,16 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
                                    std::to_string(t) + " s (max speed " + std::to_string(speed) +
                                    " m/s); use a smaller fluid.time_step.value or the adaptive mode");
       }
-      dt = std::min(dt, end - t);
+      // With a partner the window's end is the end to meet.
+      dt = std::min(dt, coupling ? coupling->max_time_step() : end - t);
       last_good = solver.particles();
+      if (coupling) coupling->before_step(dt);
       last = solver.step(t, dt, motion.acceleration(t + 0.5 * dt));
       t += dt;
+      if (coupling && !coupling->after_step(dt) && coupling->repeats_windows()) {
+        t = coupling->time();  // a repeated window starts again; its outputs wait until it is accepted
+        continue;
+      }
       speed = last.max_speed;
       stats.add(last, c.adaptive_time_step ? limits.limiting() : "fixed");
       if (t >= next_probe * (1.0 - 1e-12)) {
@@ -240,10 +251,11 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
                              " s) is the final snapshot of fluid.xdmf");
   }
   outputs.flush();
+  if (coupling) coupling->finish();
   const double wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_clock_start).count();
   const auto& force = outputs.last_total_force();
-  return {{"fluid",
+  nlohmann::json results{{"fluid",
            {{"particles", solver.global_particle_count()},
             {"steps", stats.steps},
             {"end_time_s", t},
@@ -257,6 +269,8 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
             {"wall_seconds", wall_seconds},
             {"particle_steps_per_second", stats.particle_steps / wall_seconds},
             {"wall_seconds_per_simulated_second", t > 0.0 ? wall_seconds / t : 0.0}}}};
+  if (coupling) results["fluid"]["coupling"] = coupling->summary();
+  return results;
 }
 
 }  // namespace tankfsi::sph

@@ -30,6 +30,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,29 @@ class FluidSolver {
   /// F = g - a_g at t + dt/2). Collective. Throws std::runtime_error if the PPE
   /// fails or dt breaches the motion margin of the halo.
   StepReport step(double t, double dt, const Eigen::Vector3d& ground_acceleration);
+
+  /// Moves the walls (a coupled, deforming structure): every wall vertex's
+  /// position and velocity, tank-base frame.
+  void move_walls(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities) {
+    walls_.move(positions, velocities);
+  }
+  /// What an implicit coupling window rolls back to: this rank's particles and
+  /// the counters (the walls are moved again by the next step's coupling).
+  struct Checkpoint {
+    Particles particles;
+    long long steps = 0;
+    long long removed_count = 0;
+    double removed_volume = 0.0;
+  };
+  void save(Checkpoint& checkpoint) const {
+    checkpoint = {particles_, steps_, removed_count_, removed_volume_};
+  }
+  void restore(const Checkpoint& checkpoint) {
+    particles_ = checkpoint.particles;
+    steps_ = checkpoint.steps;
+    removed_count_ = checkpoint.removed_count;
+    removed_volume_ = checkpoint.removed_volume;
+  }
 
   /// Collective: the largest speed over all ranks.
   [[nodiscard]] double max_speed() const;

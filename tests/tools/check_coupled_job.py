@@ -11,6 +11,7 @@ PATTERN: a partner that fails or dies takes the job down with its message,
 never a hang and never exit 0.
 """
 import argparse
+import shutil
 import subprocess
 import sys
 import time
@@ -21,9 +22,15 @@ def main():
     parser.add_argument("--mpiexec", required=True)
     parser.add_argument("--expect-failure", action="append", default=[])
     parser.add_argument("--within", type=float, default=60.0)
+    parser.add_argument("--expect-success-output", action="append", default=[],
+                        help="text the output of a successful job must contain")
+    parser.add_argument("--remove-first", action="append", default=[],
+                        help="a run folder of this test's own, removed before the job (a rerun starts afresh)")
     parser.add_argument("job", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     job = args.job[1:] if args.job and args.job[0] == "--" else args.job
+    for folder in args.remove_first:
+        shutil.rmtree(folder, ignore_errors=True)
     command = [args.mpiexec, "--oversubscribe"] + job
     print("running:", " ".join(command), flush=True)
     start = time.monotonic()
@@ -47,6 +54,9 @@ def main():
                 problems.append(f"the output does not say {pattern!r}")
     elif result.returncode != 0:
         problems.append(f"the job failed with exit status {result.returncode}")
+    for pattern in args.expect_success_output:
+        if pattern not in output:
+            problems.append(f"the output does not say {pattern!r}")
     for p in problems:
         print("FAILED:", p)
     if not problems:

@@ -1,0 +1,104 @@
+#include "sph_solver/app/fluid_coupling.hpp"
+
+#include <algorithm>
+
+#include "coupling/mapping/nearest_projection.hpp"
+#include "coupling/settings.hpp"
+
+namespace tankfsi::sph {
+
+namespace {
+
+coupling::CouplingSettings settings_of(const ProgramContext& context) {
+  coupling::CouplingSettings settings = coupling::read_coupling_settings(context.config);
+  if (context.config.text("fluid.time_step.mode") == "fixed" &&
+      context.config.real("fluid.time_step.value") > settings.time_window)
+    throw context.config.error_at("fluid.time_step.value", "the fluid's time step " +
+                                                               std::to_string(context.config.real("fluid.time_step.value")) +
+                                                               " s is longer than coupling.time_window " +
+                                                               std::to_string(settings.time_window) + " s");
+  return settings;
+}
+
+}  // namespace
+
+FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
+    : solver_(solver),
+      participant_(coupling::Side::fluid, settings_of(context), context.comm, context.partner,
+                   coupling::case_fingerprints(context.config)),
+      repeats_(context.config.text("coupling.scheme") == "implicit") {
+  participant_.exchange_interface();
+  const TriangleMesh& mesh = solver.walls().mesh();
+  reference_ = mesh.vertices();
+  // Which wall vertices lie on the structure's wetted surface.
+  std::vector<double> all;
+  for (const auto& x : reference_) all.insert(all.end(), x.data(), x.data() + 3);
+  const coupling::NearestProjection probe(participant_.interface_mesh(), all);
+  const double tolerance = 0.5 * solver.model().spacing;
+  std::vector<double> coupled_positions;
+  for (std::size_t v = 0; v < reference_.size(); ++v)
+    if (probe.distances()[v] <= tolerance) {
+      coupled_.push_back(static_cast<int>(v));
+      coupled_positions.insert(coupled_positions.end(), reference_[v].data(), reference_[v].data() + 3);
+      mapping_distance_ = std::max(mapping_distance_, probe.distances()[v]);
+    }
+  if (coupled_.empty())
+    throw context.config.error_at("coupling", "no wall vertex of the fluid lies within half a particle spacing (" +
+                                                  std::to_string(tolerance) +
+                                                  " m) of the structure's wetted surface: do both programs model the "
+                                                  "same tank in the same frame?");
+  participant_.set_own_vertices(coupled_positions);
+  values_.assign(3 * coupled_.size(), 0.0);
+  participant_.write(coupling::Field::force, values_);  // no initial forces yet (see the header)
+  participant_.initialize();
+  positions_ = reference_;
+  velocities_.assign(reference_.size(), Eigen::Vector3d::Zero());
+  context.log.info("coupling: ", coupled_.size(), " of ", reference_.size(), " wall vertices on the structure's ",
+                   participant_.interface_mesh().vertex_count(), "-vertex wetted surface (farthest ", mapping_distance_,
+                   " m from it)");
+}
+
+void FluidCoupling::before_step(double dt) {
+  if (participant_.requires_writing_checkpoint()) solver_.save(checkpoint_);
+  participant_.read(coupling::Field::displacement, dt, values_);
+  std::vector<double> velocity(values_.size());
+  participant_.read(coupling::Field::velocity, dt, velocity);
+  for (std::size_t k = 0; k < coupled_.size(); ++k) {
+    const auto v = static_cast<std::size_t>(coupled_[k]);
+    positions_[v] = reference_[v] + Eigen::Vector3d(values_[3 * k], values_[3 * k + 1], values_[3 * k + 2]);
+    velocities_[v] = Eigen::Vector3d(velocity[3 * k], velocity[3 * k + 1], velocity[3 * k + 2]);
+  }
+  solver_.move_walls(positions_, velocities_);
+}
+
+bool FluidCoupling::after_step(double dt) {
+  const auto& forces = solver_.local_wall_forces();  // this rank's share: summed over ranks by the coupling
+  for (std::size_t k = 0; k < coupled_.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      values_[3 * k + static_cast<std::size_t>(c)] = forces[static_cast<std::size_t>(coupled_[k])][c];
+  participant_.write(coupling::Field::force, values_);
+  participant_.advance(dt);
+  if (participant_.requires_reading_checkpoint()) {
+    solver_.restore(checkpoint_);
+    return false;
+  }
+  return participant_.window_completed();
+}
+
+void FluidCoupling::finish() { participant_.finalize(); }
+
+nlohmann::json FluidCoupling::summary() const {
+  long long iterations = 0;
+  for (const auto& r : participant_.window_reports()) iterations += r.iterations;
+  const auto windows = participant_.window_reports().size();
+  const auto timings = participant_.timings();
+  return {{"windows", windows},
+          {"iterations_per_window", windows ? static_cast<double>(iterations) / static_cast<double>(windows) : 0.0},
+          {"coupled_wall_vertices", coupled_.size()},
+          {"interface_vertices", participant_.interface_mesh().vertex_count()},
+          {"largest_mapping_distance_m", mapping_distance_},
+          {"wait_s", timings.wait},
+          {"work_s", timings.work}};
+}
+
+}  // namespace tankfsi::sph

@@ -1,0 +1,55 @@
+#pragma once
+// FluidCoupling: sph_solver as the fluid side of a coupled job (METHOD.md §2,
+// §4; coupling/participant.hpp). The fluid keeps its own wall mesh; the wall
+// vertices that lie on the structure's wetted surface (within half a
+// particle spacing of its triangles: both programs model the same tank, each
+// with its own faceting) are coupled, mapped onto the structure's triangles
+// by nearest projection. Every step they move with the structure (eq 18:
+// constant velocity over the window, positions at the step's end), the other
+// walls stay put; every step's forces of the fluid on the coupled vertices
+// go to the structure (averaged over the window, eq 16). Implicit windows roll
+// the particles back to the window start.
+//
+// Not yet: the fluid's forces at t = 0 (the structure receives zero initial
+// forces and meets the liquid's weight over the first window).
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "common/run/program.hpp"
+#include "coupling/participant.hpp"
+#include "sph_solver/isph/fluid_solver.hpp"
+
+namespace tankfsi::sph {
+
+class FluidCoupling {
+ public:
+  /// Collective over both programs: handshake, interface, initial data.
+  FluidCoupling(ProgramContext& context, FluidSolver& solver);
+
+  [[nodiscard]] bool ongoing() const { return participant_.is_ongoing(); }
+  [[nodiscard]] double time() const { return participant_.time(); }
+  [[nodiscard]] double max_time_step() const { return participant_.max_time_step(); }
+  [[nodiscard]] bool repeats_windows() const { return repeats_; }
+  /// Before a step of dt: saves the state at a window start (implicit) and
+  /// moves the coupled wall vertices to where the structure is at the step's end.
+  void before_step(double dt);
+  /// After the step: gives the step's wall forces and advances the coupling;
+  /// true when a window was accepted; false mid-window or when the window
+  /// must be repeated (the particles are then back at its start, time() too).
+  bool after_step(double dt);
+  void finish();
+  [[nodiscard]] nlohmann::json summary() const;
+
+ private:
+  FluidSolver& solver_;
+  coupling::Participant participant_;
+  bool repeats_ = false;
+  std::vector<Eigen::Vector3d> reference_;  ///< every wall vertex at rest
+  std::vector<int> coupled_;                ///< wall vertices on the interface
+  std::vector<double> values_;              ///< 3 per coupled vertex
+  std::vector<Eigen::Vector3d> positions_, velocities_;
+  FluidSolver::Checkpoint checkpoint_;
+  double mapping_distance_ = 0.0;
+};
+
+}  // namespace tankfsi::sph
