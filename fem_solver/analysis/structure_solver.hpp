@@ -31,6 +31,8 @@ class StructureSolver {
   StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
                   const GroundMotion& motion);
 
+  /// The interface the coupling exchanges (the same on every rank); sets up
+  /// the scatter of its values to every rank. Collective.
   void set_interface(InterfaceMesh interface);
   [[nodiscard]] const InterfaceMesh& interface() const { return interface_; }
   /// Forces on the interface vertices (3 per vertex, global axes); the same on
