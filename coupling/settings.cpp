@@ -104,6 +104,13 @@ CouplingSettings read_coupling_settings(const CaseConfig& config) {
   return s;
 }
 
+void require_step_within_window(const CaseConfig& config, const std::string& step_key, const CouplingSettings& settings) {
+  const double step = config.real(step_key);
+  if (step > settings.time_window)
+    throw config.error_at(step_key, "the time step " + exact_text(step) + " s is longer than coupling.time_window " +
+                                        exact_text(settings.time_window) + " s");
+}
+
 std::string fnv1a_hex(const std::string& bytes) {
   std::uint64_t hash = 14695981039346656037ull;
   for (unsigned char c : bytes) {

@@ -50,6 +50,10 @@ struct CouplingSettings {
 /// a coupling section (ConfigError naming the file otherwise).
 CouplingSettings read_coupling_settings(const CaseConfig& config);
 
+/// A program's own time step (case key `step_key`) must fit in the window:
+/// throws ConfigError naming the key's line otherwise.
+void require_step_within_window(const CaseConfig& config, const std::string& step_key, const CouplingSettings& settings);
+
 /// Fingerprint of each section of a case that both partners read (all but
 /// output and title): "section" -> 64-bit FNV-1a of its resolved YAML, as hex.
 /// Partners that read different cases differ in at least one entry.

@@ -12,11 +12,7 @@ namespace {
 coupling::CouplingSettings settings_of(const ProgramContext& context) {
   coupling::CouplingSettings settings = coupling::read_coupling_settings(context.config);
   // A structure step longer than the window could not follow the window's ramp.
-  if (context.config.real("structure.time_step") > settings.time_window)
-    throw context.config.error_at("structure.time_step", "the structure's time step " +
-                                                             std::to_string(context.config.real("structure.time_step")) +
-                                                             " s is longer than coupling.time_window " +
-                                                             std::to_string(settings.time_window) + " s");
+  coupling::require_step_within_window(context.config, "structure.time_step", settings);
   return settings;
 }
 

@@ -11,12 +11,9 @@ namespace {
 
 coupling::CouplingSettings settings_of(const ProgramContext& context) {
   coupling::CouplingSettings settings = coupling::read_coupling_settings(context.config);
-  if (context.config.text("fluid.time_step.mode") == "fixed" &&
-      context.config.real("fluid.time_step.value") > settings.time_window)
-    throw context.config.error_at("fluid.time_step.value", "the fluid's time step " +
-                                                               std::to_string(context.config.real("fluid.time_step.value")) +
-                                                               " s is longer than coupling.time_window " +
-                                                               std::to_string(settings.time_window) + " s");
+  // An adaptive step is cut at the window's end; a fixed one must fit in it.
+  if (context.config.text("fluid.time_step.mode") == "fixed")
+    coupling::require_step_within_window(context.config, "fluid.time_step.value", settings);
   return settings;
 }
 
