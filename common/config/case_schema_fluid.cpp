@@ -73,6 +73,17 @@ std::vector<KeySpec> fluid_keys() {
           .unit_is("m").with_length(6),
       boolean_key("fluid.fill.hydrostatic", "Start from the hydrostatic pressure rho g (level - height).")
           .default_is("true"),
+      choice_key("fluid.initial_velocity.type", {"rest", "standing_wave"},
+                 "Initial velocity of the liquid: at rest, or the linear standing sloshing wave of a "
+                 "rectangular tank (rectangular_tank, filled whole) that starts from the still surface at its "
+                 "largest velocity: eta = a cos(n pi x / L) sin(omega t), omega^2 = g (n pi / L) tanh(n pi H / L).")
+          .default_is("rest"),
+      real_key("fluid.initial_velocity.amplitude",
+               "Amplitude a of the standing wave's surface elevation at the side walls; linear theory, so at "
+               "most 10 % of the depth.")
+          .unit_is("m").is_required().above(0).only_when("fluid.initial_velocity.type", {"standing_wave"}),
+      integer_key("fluid.initial_velocity.mode", "Mode number n of the standing wave (1: the first sloshing mode).")
+          .default_is("1").at_least(1).only_when("fluid.initial_velocity.type", {"standing_wave"}),
       real_vector_key("fluid.domain",
                       "Box [x0, y0, z0, x1, y1, z1] outside which particles are removed (overflow); "
                       "omitted for the walls' bounding box grown by one kernel support.")
