@@ -9,22 +9,11 @@
 #include <limits>
 
 #include "sph_solver/isph/time_step_control.hpp"
+#include "still_tank.hpp"
 
 using namespace tankfsi::sph;
+using tankfsi::test::water;
 
-namespace {
-
-FluidModel water() {
-  FluidModel m;
-  m.dimension = 2;
-  m.spacing = 0.02;
-  m.smoothing_length = 0.024;
-  m.density = 1000.0;
-  m.viscosity = 1e-3;
-  return m;
-}
-
-}  // namespace
 
 TEST_CASE("time-step limits and the limit that binds", "[time_step]") {
   const FluidModel m = water();
