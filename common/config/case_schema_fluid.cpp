@@ -31,8 +31,9 @@ std::vector<KeySpec> fluid_keys() {
                "Weight gamma of the density-error part of the pressure Poisson source term.")
           .default_is("0.01").at_least(0).at_most(1),
       real_key("fluid.ppe.free_surface_threshold",
-               "Particles with density below this fraction of the reference density are free-surface "
-               "particles (pressure 0).")
+               "Particles with density below this fraction of the reference density (or a kernel support "
+               "that is not full) are counted as free-surface particles and are not shifted; the pressure "
+               "condition P = 0 itself is imposed on the surface plane beyond them.")
           .default_is("0.97").above(0).below(1),
       text_key("fluid.ppe.solver_options",
                "PETSc options for the pressure solver (prefix -ppe_), applied before the command line's.")
