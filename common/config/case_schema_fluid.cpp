@@ -31,8 +31,9 @@ std::vector<KeySpec> fluid_keys() {
                "Weight gamma of the density-error part of the pressure Poisson source term.")
           .default_is("0.01").at_least(0).at_most(1),
       real_key("fluid.ppe.free_surface_threshold",
-               "Particles with density below this fraction of the reference density are free-surface "
-               "particles (pressure 0).")
+               "Particles with density below this fraction of the reference density (or a kernel support "
+               "that is not full) are counted as free-surface particles and are not shifted; the pressure "
+               "condition P = 0 itself is imposed on the surface plane beyond them.")
           .default_is("0.97").above(0).below(1),
       text_key("fluid.ppe.solver_options",
                "PETSc options for the pressure solver (prefix -ppe_), applied before the command line's.")
@@ -73,6 +74,17 @@ std::vector<KeySpec> fluid_keys() {
           .unit_is("m").with_length(6),
       boolean_key("fluid.fill.hydrostatic", "Start from the hydrostatic pressure rho g (level - height).")
           .default_is("true"),
+      choice_key("fluid.initial_velocity.type", {"rest", "standing_wave"},
+                 "Initial velocity of the liquid: at rest, or the linear standing sloshing wave of a "
+                 "rectangular tank (rectangular_tank, filled whole) that starts from the still surface at its "
+                 "largest velocity: eta = a cos(n pi x / L) sin(omega t), omega^2 = g (n pi / L) tanh(n pi H / L).")
+          .default_is("rest"),
+      real_key("fluid.initial_velocity.amplitude",
+               "Amplitude a of the standing wave's surface elevation at the side walls; linear theory, so at "
+               "most 10 % of the depth.")
+          .unit_is("m").is_required().above(0).only_when("fluid.initial_velocity.type", {"standing_wave"}),
+      integer_key("fluid.initial_velocity.mode", "Mode number n of the standing wave (1: the first sloshing mode).")
+          .default_is("1").at_least(1).only_when("fluid.initial_velocity.type", {"standing_wave"}),
       real_vector_key("fluid.domain",
                       "Box [x0, y0, z0, x1, y1, z1] outside which particles are removed (overflow); "
                       "omitted for the walls' bounding box grown by one kernel support.")

@@ -7,7 +7,8 @@ Reads probes/front.csv (front_x_m, measured from the wall behind the column) and
 prints, at the experimental times, Z = z/a against Martin & Moyce (1952, n^2 = 2)
 and Koshizuka & Oka (1996), T = t sqrt(2 g / a); writes plots/dam_break_front.png.
 Points where the front has reached the far wall of the tank are not comparable
-and are left out (the experiments' tanks were longer).
+and are left out (the experiments' tanks were longer). The last column, the lag,
+is how much earlier (in T) the run reaches each experimental Z.
 """
 import argparse
 import pathlib
@@ -36,13 +37,16 @@ def main():
     T = data[:, 0] * np.sqrt(2 * args.gravity / a)
     Z = data[:, 1] / a
     reach = Z.max() - 0.05  # beyond this the front is at the far wall
-    print(f"{'reference':<16}{'T':>7}{'Z ref':>8}{'Z run':>8}{'error':>9}")
+    # lag: how much earlier (in T) the run reaches the experiment's Z: a constant lag
+    # is a delayed start of the experiment (gate removal), a growing one a faster front.
+    print(f"{'reference':<16}{'T':>7}{'Z ref':>8}{'Z run':>8}{'error':>9}{'lag':>8}")
     for name, points in (("Martin & Moyce", MARTIN_MOYCE), ("Koshizuka & Oka", KOSHIZUKA_OKA)):
         for t, z in points:
             if t > T[-1] or z > reach:
                 continue
             value = np.interp(t, T, Z)
-            print(f"{name:<16}{t:7.3f}{z:8.3f}{value:8.3f}{100 * (value / z - 1):+8.1f} %")
+            reached = np.interp(z, np.maximum.accumulate(Z), T)
+            print(f"{name:<16}{t:7.3f}{z:8.3f}{value:8.3f}{100 * (value / z - 1):+8.1f} %{t - reached:8.3f}")
     plots = run / "plots"
     plots.mkdir(exist_ok=True)
     plt.plot(T, Z, label="tankfsi")

@@ -1,11 +1,13 @@
 #include "sph_solver/app/fluid_case.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include "common/config/config_error.hpp"
 #include "sph_solver/particles/filling.hpp"
+#include "sph_solver/particles/standing_wave.hpp"
 #include "sph_solver/walls/gmsh_reader.hpp"
 #include "sph_solver/walls/stl_reader.hpp"
 #include "sph_solver/walls/tank_meshes.hpp"
@@ -117,6 +119,31 @@ std::vector<ProbeSpec> read_probes(const CaseConfig& config) {
   return probes;
 }
 
+/// The standing wave of fluid.initial_velocity on the particles of a whole
+/// rectangular tank (standing_wave.hpp): x from 0 to the width, floor at y = 0,
+/// depth the top of the highest particle layer.
+void apply_initial_wave(const CaseConfig& config, FluidCase& c) {
+  const std::string key = "fluid.initial_velocity.type";
+  if (config.text("fluid.geometry.type") != "rectangular_tank")
+    throw config.error_at(key, "a standing wave needs fluid.geometry.type rectangular_tank");
+  if (config.has("fluid.fill.region"))
+    throw config.error_at(key, "a standing wave fills the whole tank: remove fluid.fill.region");
+  StandingWave wave;
+  wave.width = config.real("fluid.geometry.width");
+  wave.gravity = c.model.gravity;
+  double top = 0.0;
+  for (const auto& x : c.particles.position) top = std::max(top, x.y());
+  wave.depth = top + 0.5 * c.model.spacing;
+  wave.mode = static_cast<int>(config.integer("fluid.initial_velocity.mode"));
+  wave.amplitude = config.real("fluid.initial_velocity.amplitude");
+  if (wave.amplitude > 0.1 * wave.depth)
+    throw config.error_at("fluid.initial_velocity.amplitude",
+                          "a linear standing wave needs an amplitude of at most 10 % of the depth (" +
+                              std::to_string(0.1 * wave.depth) + " m)");
+  if (!(wave.gravity > 0.0)) throw config.error_at("fluid.gravity", "a standing wave needs gravity > 0");
+  apply_standing_wave(wave, c.particles);
+}
+
 }  // namespace
 
 FluidCase read_fluid_case(const CaseConfig& config) {
@@ -141,6 +168,7 @@ FluidCase read_fluid_case(const CaseConfig& config) {
   } catch (const std::invalid_argument& e) {
     throw config.error_at("fluid.fill.level", e.what());
   }
+  if (config.text("fluid.initial_velocity.type") == "standing_wave") apply_initial_wave(config, c);
   const double support = Kernel(c.model.kernel, c.model.dimension, c.model.smoothing_length).support_radius();
   if (config.has("fluid.domain")) {
     c.domain = box_from(config, "fluid.domain");

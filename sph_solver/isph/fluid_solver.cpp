@@ -101,6 +101,12 @@ StageTimers::Scope FluidSolver::stage(const std::string& name) { return timers_-
 
 double FluidSolver::max_speed() const { return global_max(comm_, largest_norm(particles_.velocity)); }
 
+double FluidSolver::max_pressure() const {
+  double largest = 0.0;
+  for (const double p : particles_.pressure) largest = std::max(largest, std::abs(p));
+  return global_max(comm_, largest);
+}
+
 long long FluidSolver::global_particle_count() const { return global_sum(comm_, particles_.count()); }
 
 std::vector<Eigen::Vector3d> FluidSolver::total_wall_forces() const {
@@ -159,7 +165,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     auto scope = stage("neighbours");
     remove_escaped();
     redistribute();
-    // Ghosts must cover every neighbour at x* too: the support plus twice the
+    // Ghosts must cover every neighbour at x~ too: the support plus twice the
     // largest displacement of the step (two particles approaching each other).
     const double margin = std::max(0.5 * model_.spacing, 2.5 * dt * (speed_before + dt * body_force.norm()));
     halo_.build(comm_, decomposition_, particles_.position, kernel_.support_radius() + margin);
@@ -178,7 +184,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   const auto velocity_n = with_ghosts(halo_, particles_.velocity);
   const auto index = with_ghosts(halo_, global_index);
 
-  // 1. Predictor at x^n.
+  // 1. Predictor at x^n; the PPE's positions x~ = x^n + dt v^n (fluid_solver.hpp).
   std::vector<Eigen::Vector3d> x_star(at(owned));
   std::vector<Eigen::Vector3d> v_star(at(owned));
   std::vector<double> density_now;  // kernel sums at x^n
@@ -196,11 +202,11 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     for (int i = 0; i < owned; ++i) {
       v_star[at(i)] = velocity_n[at(i)] + dt * (viscous[at(i)] + body_force);
       if (model_.dimension == 2) v_star[at(i)].z() = 0.0;
-      x_star[at(i)] = particles_.position[at(i)] + dt * v_star[at(i)];
+      x_star[at(i)] = particles_.position[at(i)] + dt * velocity_n[at(i)];
     }
   }
 
-  // 2. Pressure Poisson equation at x*.
+  // 2. Pressure Poisson equation at x~.
   Configuration next;
   {
     auto scope = stage("neighbours");
@@ -234,10 +240,9 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     for (int i = 0; i < owned; ++i) {
       const double wall_share = wall_laplacian_share(n, i, v_star[at(i)], dt);
       // The density error of the state x^n, against the rest density of the lattice;
-      // the air completes it near the free surface. (The predictor's own approach to
-      // a wall is the Neumann share's business: at rest its step g dt^2 makes the
-      // floor layer read 1.0008 rho0 at x* for dt = 2 ms, which counted here as well
-      // steepens the first steps' pressure gradient by 0.5 %.)
+      // the air completes it near the free surface. (At the PPE's positions the
+      // density would hold the step's own compression too, which the divergence term
+      // and the walls' Neumann share already remove.)
       const double error = rest_density - (air[at(i)].active ? rest_density : density_now[at(i)]);
       source[at(i)] = rho0 / dt * divergence[at(i)] + model_.density_error_weight * error / (dt * dt) - wall_share;
     }
@@ -297,6 +302,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   report.removed_particles = removed_this_step_;
   report.particles = particles_after_removal_;
   report.max_speed = max_speed();
+  report.max_pressure = max_pressure();
   if (!std::isfinite(report.max_speed)) {
     std::ostringstream message;
     message << "step " << steps_ << " at t = " << t << " s: a particle velocity is not finite";

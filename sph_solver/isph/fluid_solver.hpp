@@ -8,22 +8,28 @@
 //      particles are re-sorted in cell order; particles migrate to their owners;
 //      the halo (ghost particles within the kernel support plus a margin that
 //      covers the step's motion) is rebuilt.
-//   1. predictor at x^n: v* = v^n + dt (Morris viscosity + F), x* = x^n + dt v*
-//   2. PPE at x*: the kernel-sum density rho* (walls included, corners' overlaps
+//   1. predictor at x^n: v* = v^n + dt (Morris viscosity + F); the PPE's positions
+//      x~ = x^n + dt v^n. (METHOD.md's x* = x^n + dt v* adds the uniform shift
+//      dt^2 F, which the fluid sums do not see but the walls do: a liquid at rest then
+//      settles g dt^2 above its lattice and every change of dt kicks it — a 6 -> 4.5 ms
+//      step took a settled tank from 6e-4 to 4e-3 m/s. x~ keeps what the prediction is
+//      for: approaching particles are seen closer, which the step needs — evaluated
+//      at x^n itself it turns unstable at 9 ms where x~ and x* are settled.)
+//   2. PPE at x~: the kernel-sum density rho* (walls included, corners' overlaps
 //      once) gives each particle near the free surface its air half-space beyond
 //      the surface plane (free_surface.hpp: P = 0 on the plane, not at the
 //      particle; every particle is an unknown); source
 //      S = rho0/dt div v* + gamma (rho_L - rho^n)/dt^2, rho_L the lattice's rest
 //      density and rho^n the density of the state x^n (the air completes it near
 //      the surface); solve for P^{n+1} (PETSc)
-//   3. corrector: v^{n+1} = v* - dt grad P / rho, x^{n+1} = x^n + dt (v^n + v^{n+1})/2
+//   3. corrector at x~: v^{n+1} = v* - dt grad P / rho, x^{n+1} = x^n + dt (v^n + v^{n+1})/2
 //   4. shifting (Lind et al. 2012): dr = -D grad C with D = A h |v|max dt, capped at
 //      0.2 L0, none on or next to a free-surface particle (density below beta rho0 or
 //      div r below 1.5 / 2.4); the velocity follows the shift to first
-//      order. grad C is taken at x* with the step's neighbour list (one neighbour
+//      order. grad C is taken at x~ with the step's neighbour list (one neighbour
 //      search less than at x^{n+1}; the shift is a regularisation, not physics).
 // Wall forces (force of the fluid on each wall vertex) of the step: the viscous
-// part at x^n plus the pressure part at x*.
+// part at x^n plus the pressure part at x~.
 #include <mpi.h>
 
 #include <Eigen/Core>
@@ -53,6 +59,7 @@ struct StepReport {
   long long removed_particles = 0;       ///< this step, all ranks
   long long particles = 0;               ///< in the step, all ranks
   double max_speed = 0.0;                ///< after the step, all ranks
+  double max_pressure = 0.0;             ///< largest |P| of the step, all ranks
   double max_density_error = 0.0;        ///< max |rho* - rho0| / rho0 over the liquid's interior
 };
 
@@ -94,6 +101,8 @@ class FluidSolver {
 
   /// Collective: the largest speed over all ranks.
   [[nodiscard]] double max_speed() const;
+  /// Collective: the largest |P| of the particles over all ranks.
+  [[nodiscard]] double max_pressure() const;
 
   [[nodiscard]] const FluidModel& model() const { return model_; }
   [[nodiscard]] const Kernel& kernel() const { return kernel_; }
@@ -110,7 +119,7 @@ class FluidSolver {
   [[nodiscard]] double removed_volume() const { return removed_volume_; }
   [[nodiscard]] long long global_particle_count() const;
   /// The kernel-sum density rho* (walls included) of each owned particle at the
-  /// PPE's positions x* of the last step, in the order of particles(); NaN before
+  /// PPE's positions x~ of the last step, in the order of particles(); NaN before
   /// the first step.
   [[nodiscard]] const std::vector<double>& predicted_density() const { return predicted_density_; }
   /// 1 for each owned particle that was a free-surface (Dirichlet) particle in the

@@ -107,8 +107,13 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
   }
 
   // Particles migrate and leave: the local size changes between steps, which a
-  // KSP only accepts after a reset (its options and type are kept).
-  if (owned != solved_size_) check(KSPReset(ksp_), "KSPReset");
+  // KSP only accepts after a reset (its options and type are kept). The reset is
+  // collective and the operator's global size changes with any rank's: all ranks
+  // reset when one rank's size changed (a particle lost on rank 1 only left rank 0
+  // with a KSP of the old global size: "Nonconforming object sizes").
+  int changed = owned != solved_size_ ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_);
+  if (changed != 0) check(KSPReset(ksp_), "KSPReset");
   solved_size_ = owned;
   check(KSPSetOperators(ksp_, matrix, matrix), "KSPSetOperators");
   const PetscErrorCode solve_code = KSPSolve(ksp_, rhs, solution);

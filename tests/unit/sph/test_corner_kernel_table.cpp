@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "kernel_settings.hpp"
 #include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/walls/corner_kernel_table.hpp"
 #include "sph_solver/walls/wall_kernel_table.hpp"
@@ -21,19 +22,8 @@ namespace {
 
 constexpr double spacing = 0.013;  // odd on purpose, as in the wall table tests
 
-struct Setting {
-  KernelType type;
-  int dimension;
-  double h_over_dx;
-};
-
-std::vector<Setting> settings() {
-  std::vector<Setting> result;
-  for (KernelType type : {KernelType::quintic_spline, KernelType::quartic_spline, KernelType::wendland_c2})
-    for (int dimension : {2, 3})
-      for (double h_over_dx : {1.2, 1.5}) result.push_back({type, dimension, h_over_dx});
-  return result;
-}
+using Setting = tankfsi::test::KernelSetting;
+const auto settings = tankfsi::test::kernel_settings;
 
 /// Lattice sites x_j = x_i + L0 k around x_i within the support, with their x_ij.
 std::vector<Vector3d> neighbour_offsets(const Kernel& kernel) {

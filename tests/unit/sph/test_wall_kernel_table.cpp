@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "kernel_settings.hpp"
 #include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/walls/wall_kernel_table.hpp"
 
@@ -28,23 +29,8 @@ constexpr double pi = std::numbers::pi;
 constexpr double spacing = 0.013;
 const Vector3d normal = Vector3d::UnitY();
 
-struct Setting {
-  KernelType type;
-  int dimension;
-  double h_over_dx;
-};
-
-// Every kernel in both dimensions at the usual ratios (a superset of the paper's
-// quintic 2D / quartic 3D; the lattice identities hold whatever the kernel quality).
-std::vector<Setting> settings() {
-  std::vector<Setting> result;
-  for (KernelType type : {KernelType::quintic_spline, KernelType::quartic_spline, KernelType::wendland_c2}) {
-    for (int dimension : {2, 3}) {
-      for (double h_over_dx : {1.2, 1.5}) result.push_back({type, dimension, h_over_dx});
-    }
-  }
-  return result;
-}
+using Setting = tankfsi::test::KernelSetting;
+const auto settings = tankfsi::test::kernel_settings;
 
 Kernel make_kernel(const Setting& s) { return Kernel(s.type, s.dimension, s.h_over_dx * spacing); }
 
