@@ -86,10 +86,13 @@ TEST_CASE("external interface loads act as the same loads given as a load case",
     coupled.advance(1e-4);
     reference.advance(1e-4);
   }
-  // Same equations, same factorisation: equal to round-off (1e-12 of the response).
+  // Same equations, same factorisation: equal to round-off of the response.
+  // The velocity is Newmark's difference of displacements over the step, so
+  // their round-off (1e-12, from MUMPS summing in another order on several
+  // ranks) reaches it magnified by |u| / (|v| dt): 1e-10 of the velocity.
   REQUIRE(largest(reference.displacement()) > 0.0);
   CHECK(largest_difference(coupled.displacement(), reference.displacement()) <= 1e-12 * largest(reference.displacement()));
-  CHECK(largest_difference(coupled.velocity(), reference.velocity()) <= 1e-12 * largest(reference.velocity()));
+  CHECK(largest_difference(coupled.velocity(), reference.velocity()) <= 1e-10 * largest(reference.velocity()));
   // The getters return the interface vertices' values, 3 each.
   const auto u = coupled.interface_displacements();
   const auto v = coupled.interface_velocities();
