@@ -14,6 +14,7 @@
 #include "common/run/petsc_defaults.hpp"
 #include "common/run/program.hpp"
 #include "fem_solver/app/structure_case.hpp"
+#include "fem_solver/app/structure_coupling.hpp"
 #include "fem_solver/app/structure_run.hpp"
 
 int main(int argc, char** argv) {
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {
       throw inputs.config.error_at("structure.solver_options", e.what());
     }
+    if (inputs.partner != MPI_COMM_NULL) tankfsi::fem::check_coupled_structure_case(inputs.config, structure_case->mesh);
     std::shared_ptr<const tankfsi::GroundMotion> motion = tankfsi::make_ground_motion(inputs.config);
     return [structure_case, motion](tankfsi::ProgramContext& context) -> nlohmann::json {
       return tankfsi::fem::run_structure(context, std::move(*structure_case), *motion);

@@ -9,6 +9,7 @@
 #include "common/excitation/ground_motion_factory.hpp"
 #include "common/run/program.hpp"
 #include "sph_solver/app/fluid_case.hpp"
+#include "sph_solver/app/fluid_coupling.hpp"
 #include "sph_solver/app/fluid_run.hpp"
 
 int main(int argc, char** argv) {
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
       "fluid"};
   return tankfsi::run_program(argc, argv, program, [](const tankfsi::ProgramInputs& inputs) -> tankfsi::ProgramWork {
     auto fluid_case = std::make_shared<tankfsi::sph::FluidCase>(tankfsi::sph::read_fluid_case(inputs.config));
+    if (inputs.partner != MPI_COMM_NULL) tankfsi::sph::check_coupled_fluid_case(inputs.config);
     std::shared_ptr<const tankfsi::GroundMotion> motion = tankfsi::make_ground_motion(inputs.config);
     return [fluid_case, motion](tankfsi::ProgramContext& context) -> nlohmann::json {
       return tankfsi::sph::run_fluid(context, std::move(*fluid_case), *motion);

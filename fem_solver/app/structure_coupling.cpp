@@ -7,20 +7,20 @@
 
 namespace tankfsi::fem {
 
-namespace {
-
-coupling::CouplingSettings settings_of(const ProgramContext& context) {
-  coupling::CouplingSettings settings = coupling::read_coupling_settings(context.config);
+void check_coupled_structure_case(const CaseConfig& config, const ShellMesh& mesh) {
+  const coupling::CouplingSettings settings = coupling::read_coupling_settings(config);
+  if (config.text("structure.analysis") != "dynamic")
+    throw config.error_at("structure.analysis", "a coupled run needs the dynamic analysis, got '" +
+                                                    config.text("structure.analysis") + "'");
+  if (mesh.element_sets.count("wetted") == 0)
+    throw config.error_at("structure.mesh", "a coupled run needs the element set 'wetted' (the interface with the fluid)");
   // A structure step longer than the window could not follow the window's ramp.
-  coupling::require_step_within_window(context.config, "structure.time_step", settings);
-  return settings;
+  coupling::require_step_within_window(config, "structure.time_step", settings);
 }
-
-}  // namespace
 
 StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& solver)
     : solver_(solver),
-      participant_(coupling::Side::structure, settings_of(context), context.comm, context.partner,
+      participant_(coupling::Side::structure, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
       comm_(context.comm) {
   int rank = 0, size = 1;

@@ -19,6 +19,11 @@
 
 namespace tankfsi::fem {
 
+/// Set-up check of a coupled structure case, before anything is written:
+/// a coupling section, a dynamic analysis, a wetted set, a time step within the
+/// window. Throws ConfigError naming the key.
+void check_coupled_structure_case(const CaseConfig& config, const ShellMesh& mesh);
+
 class StructureCoupling {
  public:
   /// Collective over both programs: handshake, interface, initial data. The

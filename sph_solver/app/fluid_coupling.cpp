@@ -7,21 +7,16 @@
 
 namespace tankfsi::sph {
 
-namespace {
-
-coupling::CouplingSettings settings_of(const ProgramContext& context) {
-  coupling::CouplingSettings settings = coupling::read_coupling_settings(context.config);
+void check_coupled_fluid_case(const CaseConfig& config) {
+  const coupling::CouplingSettings settings = coupling::read_coupling_settings(config);
   // An adaptive step is cut at the window's end; a fixed one must fit in it.
-  if (context.config.text("fluid.time_step.mode") == "fixed")
-    coupling::require_step_within_window(context.config, "fluid.time_step.value", settings);
-  return settings;
+  if (config.text("fluid.time_step.mode") == "fixed")
+    coupling::require_step_within_window(config, "fluid.time_step.value", settings);
 }
-
-}  // namespace
 
 FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
     : solver_(solver),
-      participant_(coupling::Side::fluid, settings_of(context), context.comm, context.partner,
+      participant_(coupling::Side::fluid, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
       repeats_(context.config.text("coupling.scheme") == "implicit") {
   participant_.exchange_interface();

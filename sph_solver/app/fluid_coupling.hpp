@@ -21,6 +21,11 @@
 
 namespace tankfsi::sph {
 
+/// Set-up check of a coupled fluid case, before anything is written: a
+/// coupling section, and a fixed time step (if any) within the window.
+/// Throws ConfigError naming the key.
+void check_coupled_fluid_case(const CaseConfig& config);
+
 class FluidCoupling {
  public:
   /// Collective over both programs: handshake, interface, initial data.

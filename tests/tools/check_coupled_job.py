@@ -11,6 +11,7 @@ PATTERN: a partner that fails or dies takes the job down with its message,
 never a hang and never exit 0.
 """
 import argparse
+import os
 import shutil
 import subprocess
 import sys
@@ -26,6 +27,8 @@ def main():
                         help="text the output of a successful job must contain")
     parser.add_argument("--remove-first", action="append", default=[],
                         help="a run folder of this test's own, removed before the job (a rerun starts afresh)")
+    parser.add_argument("--expect-absent", action="append", default=[],
+                        help="a path the job must not have created (bad input writes nothing)")
     parser.add_argument("job", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     job = args.job[1:] if args.job and args.job[0] == "--" else args.job
@@ -54,6 +57,9 @@ def main():
                 problems.append(f"the output does not say {pattern!r}")
     elif result.returncode != 0:
         problems.append(f"the job failed with exit status {result.returncode}")
+    for path in args.expect_absent:
+        if os.path.exists(path):
+            problems.append(f"{path} was written although the input was bad")
     for pattern in args.expect_success_output:
         if pattern not in output:
             problems.append(f"the output does not say {pattern!r}")
