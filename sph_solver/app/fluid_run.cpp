@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "common/io/field_series_writer.hpp"
+#include "common/log/progress_line.hpp"
 #include "common/io/probe_file.hpp"
 #include "sph_solver/isph/fluid_probes.hpp"
 #include "sph_solver/isph/fluid_solver.hpp"
@@ -208,6 +209,9 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   Particles last_good = solver.particles();
   double speed = solver.max_speed();  // then each step's report carries them
   double pressure = solver.max_pressure();
+  int rank = 0;
+  MPI_Comm_rank(context.comm, &rank);
+  ProgressLine progress("sph_solver", end, rank == 0 && ProgressLine::on_terminal());
   try {
     while (coupling ? coupling->ongoing() : t < end * (1.0 - 1e-12)) {
       const Eigen::Vector3d force = c.model.body_force(motion.acceleration(t));
@@ -240,6 +244,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       speed = last.max_speed;
       pressure = last.max_pressure;
       stats.add(last, c.adaptive_time_step ? limits.limiting() : "fixed");
+      progress.update(t, stats.steps);
       if (t >= next_probe * (1.0 - 1e-12)) {
         outputs.sample(t, last);
         next_probe += c.probe_interval * std::max(1.0, std::floor((t - next_probe) / c.probe_interval) + 1.0);
@@ -247,6 +252,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       if (t >= next_field * (1.0 - 1e-12)) {
         outputs.snapshot(t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
         next_field += c.field_interval * std::max(1.0, std::floor((t - next_field) / c.field_interval) + 1.0);
+        progress.clear();  // the log line takes the line; the progress comes back after it
         context.log.info("t = ", t, " s, step ", stats.steps, ", dt = ", dt, " s, PPE ", last.ppe_iterations,
                          " iterations, max |v| = ", last.max_speed, " m/s");
       }
@@ -257,6 +263,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + std::to_string(t) +
                              " s) is the final snapshot of fluid.xdmf");
   }
+  progress.clear();
   outputs.flush();
   if (coupling) coupling->finish();
   const double wall_seconds =
