@@ -325,8 +325,7 @@ void Participant::Impl::initialize() {
       aim(initial.part);
     else
       aim(receive_part(1, 0, partner_data_name() + " of window 1").part);
-    last_output_ = parallel ? sent_input_ : last_output_;
-    previous_output_ = last_output_;
+    if (parallel) last_output_ = previous_output_ = sent_input_;  // x̂_0 = [d_0, F_0]
   }
   write_checkpoint_ = settings_.is_implicit();
   work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);

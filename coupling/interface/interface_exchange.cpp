@@ -8,13 +8,6 @@ namespace tankfsi::coupling {
 
 namespace {
 
-// One vertex as the fluid ranks assemble the mesh: where it came from too.
-struct ReceivedVertex {
-  std::int64_t id;
-  std::int64_t owner;  ///< structure rank that declared it
-  double x, y, z;
-};
-
 template <typename T>
 MPI_Datatype mpi_type();
 template <>
@@ -120,8 +113,8 @@ void InterfaceExchange::build_plan_structure() {
 
 InterfaceExchange::InterfaceExchange(PartnerLink& link) : link_(link) {
   // This rank receives the parts of structure ranks r with r mod size == rank.
-  std::vector<ReceivedVertex> vertices;
-  std::vector<std::int64_t> triangle_ids;
+  std::vector<std::int64_t> id_words, owner_words, triangle_ids;
+  std::vector<double> coordinate_words;
   for (int s = link_.rank(); s < link_.partner_size(); s += link_.size()) {
     std::vector<std::int64_t> sizes(2);
     std::vector<MPI_Request> request(1);
@@ -138,19 +131,13 @@ InterfaceExchange::InterfaceExchange(PartnerLink& link) : link_(link) {
     MPI_Irecv(triangles.data(), static_cast<int>(triangles.size()), MPI_INT64_T, s, tag_mesh_triangles, link_.inter(),
               &requests[2]);
     link_.wait(requests, "the interface mesh");
-    for (std::size_t i = 0; i < ids.size(); ++i)
-      vertices.push_back({ids[i], s, coordinates[3 * i], coordinates[3 * i + 1], coordinates[3 * i + 2]});
+    id_words.insert(id_words.end(), ids.begin(), ids.end());
+    owner_words.insert(owner_words.end(), ids.size(), s);
+    coordinate_words.insert(coordinate_words.end(), coordinates.begin(), coordinates.end());
     triangle_ids.insert(triangle_ids.end(), triangles.begin(), triangles.end());
   }
 
   // Every fluid rank gets the whole mesh.
-  std::vector<std::int64_t> id_words, owner_words;
-  std::vector<double> coordinate_words;
-  for (const auto& v : vertices) {
-    id_words.push_back(v.id);
-    owner_words.push_back(v.owner);
-    coordinate_words.insert(coordinate_words.end(), {v.x, v.y, v.z});
-  }
   const auto all_ids = all_gather(link_.local(), id_words);
   const auto all_owners = all_gather(link_.local(), owner_words);
   const auto all_coordinates = all_gather(link_.local(), coordinate_words);

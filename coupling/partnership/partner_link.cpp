@@ -115,7 +115,7 @@ std::map<std::string, std::string> PartnerLink::exchange_hello(const std::map<st
 
 void PartnerLink::send_control(const Control& control) {
   if (!leader()) return;
-  // Keep at most a few records in flight; each completes once received.
+  // Records sent earlier and taken by now are forgotten.
   if (!pending_controls_.empty()) {
     int done = 0;
     MPI_Testall(static_cast<int>(pending_controls_.size()), pending_controls_.data(), &done, MPI_STATUSES_IGNORE);
@@ -123,11 +123,6 @@ void PartnerLink::send_control(const Control& control) {
       pending_controls_.clear();
       control_buffers_.clear();
     }
-  }
-  control_buffers_.reserve(64);
-  if (control_buffers_.size() == control_buffers_.capacity()) {
-    wait(pending_controls_, "the partner to take control records");
-    control_buffers_.clear();
   }
   control_buffers_.push_back(control);
   pending_controls_.emplace_back();

@@ -11,6 +11,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <deque>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -102,7 +103,7 @@ class PartnerLink {
   int partner_size_ = 1;
   double wait_seconds_ = 0.0;
   std::vector<MPI_Request> pending_controls_;
-  std::vector<Control> control_buffers_;
+  std::deque<Control> control_buffers_;  ///< in flight; a deque keeps them in place
 };
 
 /// The protocol version this library speaks (PROTOCOL.md, "Versioning").

@@ -64,12 +64,7 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
   participant_.initialize();
 
   // At t = 0 the structure carries the fluid's initial forces.
-  participant_.read(coupling::Field::force, 0.0, owned_values_);
-  MPI_Allgatherv(owned_values_.data(), static_cast<int>(owned_values_.size()), MPI_DOUBLE, gathered_.data(),
-                 counts_.data(), displacements_.data(), MPI_DOUBLE, comm_);
-  for (std::size_t p = 0; p < order_.size(); ++p)
-    for (std::size_t c = 0; c < 3; ++c) loads_[3 * order_[p] + c] = gathered_[3 * p + c];
-  solver_.set_external_loads(loads_);
+  load_interface(0.0);
   solver_.balance_acceleration();
 
   if (context.folder && rank == 0)
@@ -77,14 +72,18 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
                                                             context.config.real("output.field_interval"));
 }
 
-void StructureCoupling::before_step(double dt) {
-  if (participant_.requires_writing_checkpoint()) solver_.save(checkpoint_);
-  participant_.read(coupling::Field::force, dt, owned_values_);
+void StructureCoupling::load_interface(double relative_dt) {
+  participant_.read(coupling::Field::force, relative_dt, owned_values_);
   MPI_Allgatherv(owned_values_.data(), static_cast<int>(owned_values_.size()), MPI_DOUBLE, gathered_.data(),
                  counts_.data(), displacements_.data(), MPI_DOUBLE, comm_);
   for (std::size_t p = 0; p < order_.size(); ++p)
     for (std::size_t c = 0; c < 3; ++c) loads_[3 * order_[p] + c] = gathered_[3 * p + c];
   solver_.set_external_loads(loads_);
+}
+
+void StructureCoupling::before_step(double dt) {
+  if (participant_.requires_writing_checkpoint()) solver_.save(checkpoint_);
+  load_interface(dt);
 }
 
 bool StructureCoupling::after_step(double dt) {

@@ -44,6 +44,10 @@ class StructureCoupling {
   [[nodiscard]] nlohmann::json summary() const;
 
  private:
+  /// Reads the fluid's forces at relative_dt and sets them as the loads of
+  /// every interface vertex (all-gather of the declared shares).
+  void load_interface(double relative_dt);
+
   StructureSolver& solver_;
   coupling::Participant participant_;
   std::vector<std::size_t> owned_;           ///< interface vertices this rank declares

@@ -41,6 +41,7 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
                                                   "same tank in the same frame?");
   participant_.set_own_vertices(coupled_positions);
   values_.assign(3 * coupled_.size(), 0.0);
+  wall_velocity_.assign(values_.size(), 0.0);
   participant_.write(coupling::Field::force, values_);  // no initial forces yet (see the header)
   participant_.initialize();
   positions_ = reference_;
@@ -53,12 +54,11 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
 void FluidCoupling::before_step(double dt) {
   if (participant_.requires_writing_checkpoint()) solver_.save(checkpoint_);
   participant_.read(coupling::Field::displacement, dt, values_);
-  std::vector<double> velocity(values_.size());
-  participant_.read(coupling::Field::velocity, dt, velocity);
+  participant_.read(coupling::Field::velocity, dt, wall_velocity_);
   for (std::size_t k = 0; k < coupled_.size(); ++k) {
     const auto v = static_cast<std::size_t>(coupled_[k]);
     positions_[v] = reference_[v] + Eigen::Vector3d(values_[3 * k], values_[3 * k + 1], values_[3 * k + 2]);
-    velocities_[v] = Eigen::Vector3d(velocity[3 * k], velocity[3 * k + 1], velocity[3 * k + 2]);
+    velocities_[v] = Eigen::Vector3d(wall_velocity_[3 * k], wall_velocity_[3 * k + 1], wall_velocity_[3 * k + 2]);
   }
   solver_.move_walls(positions_, velocities_);
 }

@@ -51,7 +51,7 @@ class FluidCoupling {
   bool repeats_ = false;
   std::vector<Eigen::Vector3d> reference_;  ///< every wall vertex at rest
   std::vector<int> coupled_;                ///< wall vertices on the interface
-  std::vector<double> values_;              ///< 3 per coupled vertex
+  std::vector<double> values_, wall_velocity_;  ///< 3 per coupled vertex
   std::vector<Eigen::Vector3d> positions_, velocities_;
   FluidSolver::Checkpoint checkpoint_;
   double mapping_distance_ = 0.0;
