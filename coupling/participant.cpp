@@ -371,7 +371,8 @@ void Participant::Impl::aim(const std::vector<double>& part) {
     path_.aim(exchange_->gather_slices(part));
   } else {
     force_input_ = part;
-    ramp_.aim(part, settings_.ramp_chi);
+    if (settings_.hold_window_average) ramp_.hold(part);
+    else ramp_.aim(part, settings_.ramp_chi);
   }
 }
 

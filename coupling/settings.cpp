@@ -41,8 +41,9 @@ std::map<std::string, std::string> CouplingSettings::as_map() const {
       {"coupling.scheme", scheme_name(scheme)},
       {"coupling.time_window", exact_text(time_window)},
       {"end_time", exact_text(end_time)},
-      {"coupling.ramp_chi", exact_text(ramp_chi)},
+      {"coupling.structure_load", hold_window_average ? "window_average" : "ramp"},
   };
+  if (!hold_window_average) m["coupling.ramp_chi"] = exact_text(ramp_chi);
   if (scheme != Scheme::parallel_staggered) m["coupling.first"] = side_name(first);
   if (is_implicit()) {
     m["coupling.implicit.mode"] = implicit_mode == ImplicitMode::serial ? "serial" : "parallel";
@@ -84,7 +85,8 @@ CouplingSettings read_coupling_settings(const CaseConfig& config) {
                                                 : Scheme::parallel_staggered;
   s.time_window = config.real("coupling.time_window");
   s.end_time = config.real("end_time");
-  s.ramp_chi = config.real("coupling.ramp_chi");
+  s.hold_window_average = config.text("coupling.structure_load") == "window_average";
+  if (!s.hold_window_average) s.ramp_chi = config.real("coupling.ramp_chi");
   s.timeout = config.real("coupling.timeout");
   if (config.has("coupling.first")) s.first = config.text("coupling.first") == "structure" ? Side::structure : Side::fluid;
   if (s.is_implicit()) {

@@ -26,6 +26,9 @@ struct CouplingSettings {
   double time_window = 0.01;  ///< dt_c (s)
   double end_time = 1.0;      ///< simulated time of the run (s)
   double ramp_chi = 1.0;      ///< chi of eq 17, in [1, 2]
+  /// True: the structure holds the fluid's window average F̄ over the window
+  /// instead of the ramp of eq 17 (coupling.structure_load: window_average).
+  bool hold_window_average = false;
   Side first = Side::fluid;   ///< sequential staggered and serial implicit
   ImplicitMode implicit_mode = ImplicitMode::serial;
   int max_iterations = 30;

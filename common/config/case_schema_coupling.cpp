@@ -10,8 +10,13 @@ std::vector<KeySpec> coupling_keys() {
                  "Coupling scheme: the paper's parallel or sequential staggered, or implicit (strong).")
           .is_required(),
       real_key("coupling.time_window", "Coupling interval dt_c between data exchanges.").unit_is("s").is_required().above(0),
+      choice_key("coupling.structure_load", {"ramp", "window_average"},
+                 "How the structure applies the fluid's window-average force over a window: ramp (eq 17, "
+                 "with coupling.ramp_chi) or window_average (held constant: the window's impulse exactly, "
+                 "no zig-zag or lag; stable where the liquid's added mass outweighs the structure).")
+          .default_is("ramp"),
       real_key("coupling.ramp_chi", "Ramp parameter chi of eq 17: 1 is smooth, 2 conserves each window's impulse.")
-          .default_is("1").at_least(1).at_most(2),
+          .default_is("1").at_least(1).at_most(2).only_when("coupling.structure_load", {"ramp"}),
       choice_key("coupling.first", {"fluid", "structure"},
                  "Which program advances a window first (sequential staggered and serial implicit).")
           .default_is("fluid").only_when("coupling.scheme", {"sequential_staggered", "implicit"}),

@@ -44,6 +44,10 @@ std::vector<KeySpec> fluid_keys() {
       integer_key("fluid.rebalance_interval",
                   "Steps between re-partitions of the particles over the ranks (and re-sorts in cell order).")
           .default_is("20").at_least(1),
+      real_key("fluid.section_depth",
+               "2D: depth (along z) of the section whose walls are extruded from the 2D geometry; 0 takes the "
+               "least, four kernel supports. Forces on a coupled 2D structure are those on this depth.")
+          .unit_is("m").default_is("0").at_least(0),
       choice_key("fluid.geometry.type", {"rectangular_tank", "overflow_tank", "cylindrical_tank", "stl", "gmsh"},
                  "Wall geometry (required by sph_solver): a generated tank, or a surface mesh file whose "
                  "triangle normals point into the liquid."),

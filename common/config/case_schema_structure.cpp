@@ -7,9 +7,10 @@ namespace {
 std::vector<KeySpec> structure_mesh_keys() {
   const std::vector<std::string> round{"cylinder", "sphere", "tank"};
   return {
-      choice_key("structure.mesh.type", {"cylinder", "sphere", "tank", "gmsh"},
+      choice_key("structure.mesh.type", {"cylinder", "sphere", "plate", "tank", "gmsh"},
                  "Shell mesh: a generated cylinder or sphere patch (region 'shell'; node sets phi_start, "
-                 "phi_end, z_start, z_end or theta_start, theta_end, phi_start, phi_end), the generated "
+                 "phi_end, z_start, z_end or theta_start, theta_end, phi_start, phi_end), a generated flat "
+                 "plate (region 'plate'; node sets u_start, u_end, v_start, v_end), the generated "
                  "tank (regions wall, roof, bottom; element set wetted; node sets base, wall_top), or a Gmsh "
                  "file (regions and element sets from its surface groups, node sets from its curve and point "
                  "groups). Required by fem_solver."),
@@ -30,12 +31,22 @@ std::vector<KeySpec> structure_mesh_keys() {
       real_vector_key("structure.mesh.theta_range", "Sphere: polar range [start, end] from the +z axis, start > 0.")
           .unit_is("degree").with_length(2).default_is("[18, 90]").only_when("structure.mesh.type", {"sphere"}),
       real_vector_key("structure.mesh.divisions",
-                      "Cylinder: elements [around, along z]; sphere: elements [along theta, along phi].")
-          .with_length(2).is_required().at_least(1).only_when("structure.mesh.type", {"cylinder", "sphere"}),
+                      "Cylinder: elements [around, along z]; sphere: elements [along theta, along phi]; plate: "
+                      "elements [along u, along v].")
+          .with_length(2).is_required().at_least(1).only_when("structure.mesh.type", {"cylinder", "sphere", "plate"}),
+      real_vector_key("structure.mesh.corner", "Plate: the corner at u = v = 0.")
+          .unit_is("m").with_length(3).is_required().only_when("structure.mesh.type", {"plate"}),
+      real_vector_key("structure.mesh.side_u", "Plate: the side from the corner along u; normal side_u x side_v.")
+          .unit_is("m").with_length(3).is_required().only_when("structure.mesh.type", {"plate"}),
+      real_vector_key("structure.mesh.side_v", "Plate: the side from the corner along v.")
+          .unit_is("m").with_length(3).is_required().only_when("structure.mesh.type", {"plate"}),
+      boolean_key("structure.mesh.wetted", "Plate: the whole plate is the element set 'wetted' (a coupled interface).")
+          .default_is("false").only_when("structure.mesh.type", {"plate"}),
       real_key("structure.mesh.wall_height", "Tank: height of the cylindrical wall above the bottom plate.")
           .unit_is("m").is_required().above(0).only_when("structure.mesh.type", {"tank"}),
-      real_key("structure.mesh.dome_radius", "Tank: radius of the spherical dome roof (at least the tank radius).")
-          .unit_is("m").is_required().above(0).only_when("structure.mesh.type", {"tank"}),
+      real_key("structure.mesh.dome_radius",
+               "Tank: radius of the spherical dome roof (at least the tank radius); 0: an open top, no roof.")
+          .unit_is("m").is_required().at_least(0).only_when("structure.mesh.type", {"tank"}),
       real_key("structure.mesh.element_size", "Tank: target element edge length.")
           .unit_is("m").is_required().above(0).only_when("structure.mesh.type", {"tank"}),
       real_key("structure.mesh.liquid_level",
@@ -134,6 +145,11 @@ std::vector<KeySpec> structure_keys() {
           .default_is("10").at_least(1).only_when("structure.analysis", {"modal", "dynamic"}),
       real_key("structure.time_step", "Structural time step of the Newmark integration.")
           .unit_is("s").is_required().above(0).only_when("structure.analysis", {"dynamic"}),
+      choice_key("structure.initial_state", {"rest", "equilibrium"},
+                 "Dynamic: start undeformed at rest, or at rest in static equilibrium with the loads at t = 0 "
+                 "(K u = F(0): the liquid's hydrostatic load before the shaking). A coupled fluid then sees the "
+                 "displacements from that state.")
+          .default_is("rest").only_when("structure.analysis", {"dynamic"}),
       real_key("structure.damping.ratio", "Rayleigh damping ratio reached at the first target mode.")
           .default_is("0.03").at_least(0).below(1).only_when("structure.analysis", {"dynamic"}),
       real_key("structure.damping.second_ratio",
@@ -153,6 +169,10 @@ std::vector<KeySpec> structure_keys() {
                          "base, or rotation (rad).")
                   .is_required(),
               real_vector_key("position", "The sampled point (nearest node).").unit_is("m").with_length(3).is_required(),
+              real_vector_key("direction",
+                              "The quantity's component along this direction, one column (displacement_m, ...); "
+                              "omitted: the x, y and z components.")
+                  .with_length(3),
           }),
   };
   for (auto group : {structure_mesh_keys, structure_support_and_load_keys})

@@ -48,6 +48,12 @@ void LoadRamp::aim(std::span<const double> average, double chi) {
   for (std::size_t i = 0; i < start_.size(); ++i) end_[i] = start_[i] + chi * (average[i] - start_[i]);
 }
 
+void LoadRamp::hold(std::span<const double> average) {
+  require_size(average.size(), start_.size(), "load ramp");
+  start_.assign(average.begin(), average.end());
+  end_ = start_;
+}
+
 std::vector<double> LoadRamp::at(double fraction) const { return lerp(start_, end_, fraction); }
 void LoadRamp::at(double fraction, std::span<double> out) const { lerp(start_, end_, fraction, out); }
 

@@ -36,6 +36,10 @@ class LoadRamp {
   explicit LoadRamp(std::vector<double> initial_load = {}) : start_(initial_load), end_(std::move(initial_load)) {}
   /// Sets the end of the current window from the window average `average`.
   void aim(std::span<const double> average, double chi);
+  /// The alternative to eq 17: the load is `average` over the whole window
+  /// (start and end alike), so the window's impulse is exact without the
+  /// ramp's zig-zag (chi = 2) or lag (chi = 1).
+  void hold(std::span<const double> average);
   /// The load at `fraction` (0 = window start, 1 = end) of the window.
   [[nodiscard]] std::vector<double> at(double fraction) const;
   void at(double fraction, std::span<double> out) const;

@@ -84,6 +84,19 @@ void StructureSolver::balance_acceleration() {
   mark_state_changed();
 }
 
+void StructureSolver::start_at_equilibrium() {
+  build_load(time_);
+  PetscVector u = system_.assembler().create_vector();
+  {
+    const auto solver = system_.make_solver(system_.stiffness());
+    solver->solve(load_.get(), u.get());
+  }
+  PetscVector zero = system_.assembler().create_vector();
+  petsc_check(VecSet(zero.get(), 0.0), "VecSet");
+  integrator_.initialise(u.get(), zero.get(), load_.get());
+  mark_state_changed();
+}
+
 void StructureSolver::build_load(double t) {
   // F = F_constant + F_external - sum_k a_g,k(t) M iota_k
   const Eigen::Vector3d ground = motion_.acceleration(t);

@@ -43,6 +43,9 @@ class StructureSolver {
   /// that a structure loaded from the start (the liquid's hydrostatic force)
   /// does not see them as a jump over the first step.
   void balance_acceleration();
+  /// Puts the structure at rest in static equilibrium with the loads now set,
+  /// K u = F(t): the state before a dynamic load (one factorisation of K).
+  void start_at_equilibrium();
   /// Factorises K_eff for steps of dt ahead of the first advance (timed as
   /// shell_factorise rather than inside the first shell_step).
   void prepare(double dt) { integrator_.prepare(dt); }

@@ -71,6 +71,21 @@ ShellMesh generate(const CaseConfig& config, const std::string& type) {
     s.divisions_phi = n[1];
     return sphere_patch(s);
   }
+  if (type == "plate") {
+    PlatePatch p;
+    const auto vector = [&](const std::string& key) {
+      const auto v = config.real_vector(key);
+      return Eigen::Vector3d(v[0], v[1], v[2]);
+    };
+    p.corner = vector("structure.mesh.corner");
+    p.side_u = vector("structure.mesh.side_u");
+    p.side_v = vector("structure.mesh.side_v");
+    const auto n = divisions(config);
+    p.divisions_u = n[0];
+    p.divisions_v = n[1];
+    p.wetted = config.boolean("structure.mesh.wetted");
+    return plate_patch(p);
+  }
   if (type == "tank") {
     TankSpec t;
     t.radius = config.real("structure.mesh.radius");

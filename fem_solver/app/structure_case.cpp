@@ -10,7 +10,12 @@ namespace {
 std::vector<StructureProbe> read_probes(const CaseConfig& config, const ShellMesh& mesh) {
   std::vector<StructureProbe> probes;
   for (const ConfigView& record : config.records("structure.probes")) {
-    StructureProbe p{record.text("name"), record.text("quantity"), mesh.nearest_node(record.vector3("position"))};
+    StructureProbe p{record.text("name"), record.text("quantity"), mesh.nearest_node(record.vector3("position")), {}};
+    if (record.has("direction")) {
+      const Eigen::Vector3d d = record.vector3("direction");
+      if (!(d.norm() > 0.0)) throw record.error_at("direction", "the direction must not be zero");
+      p.direction = d.normalized();
+    }
     for (const auto& other : probes)
       if (other.name == p.name) throw record.error_at("name", "probe name '" + p.name + "' is used twice");
     if (p.name == "structure") throw record.error_at("name", "'structure' is the name of the run's global probe file");

@@ -2,6 +2,7 @@
 // StructureCase: everything fem_solver needs from the case file, read and
 // checked in the program's set-up (bad input is reported, naming file, line
 // and key, before anything is written).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@ struct StructureProbe {
   std::string name;
   std::string quantity;  ///< displacement, velocity, acceleration, rotation
   int node = 0;
+  /// Unit vector the probe projects onto (one column), or none (x, y, z columns).
+  std::optional<Eigen::Vector3d> direction;
 };
 
 struct DampingTarget {

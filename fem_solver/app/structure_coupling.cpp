@@ -22,7 +22,8 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
     : solver_(solver),
       participant_(coupling::Side::structure, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
-      comm_(context.comm) {
+      comm_(context.comm),
+      hold_(context.config.text("coupling.structure_load") == "window_average") {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_, &rank);
   MPI_Comm_size(comm_, &size);
@@ -63,9 +64,17 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
   participant_.write(coupling::Field::displacement, owned_values_);
   participant_.initialize();
 
-  // At t = 0 the structure carries the fluid's initial forces.
+  // At t = 0 the structure carries the fluid's initial forces: balanced by its
+  // acceleration, or by its deformation (structure.initial_state: equilibrium;
+  // the fluid's walls then follow the displacements from that state).
   load_interface(0.0);
-  solver_.balance_acceleration();
+  if (context.config.text("structure.initial_state") == "equilibrium") {
+    solver_.start_at_equilibrium();
+    reference_ = solver_.interface_displacements();
+  } else {
+    solver_.balance_acceleration();
+    reference_.assign(3 * n, 0.0);
+  }
 
   if (context.folder && rank == 0)
     reports_ = std::make_unique<coupling::WindowReportFile>(context.folder->path() / "probes" / "coupling.csv",
@@ -84,19 +93,27 @@ void StructureCoupling::load_interface(double relative_dt) {
 void StructureCoupling::before_step(double dt) {
   if (participant_.requires_writing_checkpoint()) solver_.save(checkpoint_);
   load_interface(dt);
+  // A load held over the window jumps at its start: the acceleration there is
+  // the one of the new load (Newmark's trapezoid would otherwise spread the
+  // jump over the first step and apply another impulse than the fluid gave).
+  if (hold_ && window_start_) solver_.balance_acceleration();
+  window_start_ = false;
 }
 
 bool StructureCoupling::after_step(double dt) {
   const std::vector<double> u = solver_.interface_displacements();
   for (std::size_t k = 0; k < owned_.size(); ++k)
-    for (std::size_t c = 0; c < 3; ++c) owned_values_[3 * k + c] = u[3 * owned_[k] + c];
+    for (std::size_t c = 0; c < 3; ++c)
+      owned_values_[3 * k + c] = u[3 * owned_[k] + c] - reference_[3 * owned_[k] + c];
   participant_.write(coupling::Field::displacement, owned_values_);
   participant_.advance(dt);
   if (participant_.requires_reading_checkpoint()) {
     solver_.restore(checkpoint_);
+    window_start_ = true;
     return false;
   }
   if (!participant_.window_completed()) return false;
+  window_start_ = true;
   if (reports_) reports_->append(participant_.window_reports().back(), participant_.timings());
   return true;
 }

@@ -57,6 +57,9 @@ class StructureCoupling {
   StructureSolver::Checkpoint checkpoint_;
   std::unique_ptr<coupling::WindowReportFile> reports_;
   MPI_Comm comm_;
+  std::vector<double> reference_;  ///< interface displacements the fluid's walls start from (3 per vertex)
+  bool hold_ = false;          ///< coupling.structure_load: window_average
+  bool window_start_ = true;   ///< the next step starts a window
 };
 
 }  // namespace tankfsi::fem

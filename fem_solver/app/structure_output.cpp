@@ -5,7 +5,13 @@
 namespace tankfsi::fem {
 namespace {
 
-std::vector<std::string> probe_columns(const std::string& quantity) {
+std::vector<std::string> probe_columns(const std::string& quantity, bool projected) {
+  if (projected) {
+    if (quantity == "displacement") return {"displacement_m"};
+    if (quantity == "velocity") return {"velocity_m_s"};
+    if (quantity == "acceleration") return {"acceleration_m_s2"};
+    return {"rotation_rad"};
+  }
   if (quantity == "displacement") return {"displacement_x_m", "displacement_y_m", "displacement_z_m"};
   if (quantity == "velocity") return {"velocity_x_m_s", "velocity_y_m_s", "velocity_z_m_s"};
   if (quantity == "acceleration") return {"acceleration_x_m_s2", "acceleration_y_m_s2", "acceleration_z_m_s2"};
@@ -54,7 +60,7 @@ StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c
   if (rank == 0) {
     for (const auto& p : probes_)
       probe_files_.push_back(std::make_unique<ProbeFile>(context.folder->probes() / (p.name + ".csv"),
-                                                         probe_columns(p.quantity), c.field_interval));
+                                                         probe_columns(p.quantity, p.direction.has_value()), c.field_interval));
     totals_file_ = std::make_unique<ProbeFile>(
         context.folder->probes() / "structure.csv",
         std::vector<std::string>{"base_shear_x_N", "base_shear_y_N", "support_force_z_N", "overturning_moment_x_Nm",
@@ -107,9 +113,10 @@ void StructureOutput::sample(double time, const NodalValues& displacement, const
     const StructureProbe& p = probes_[k];
     const NodalValues& source = p.quantity == "velocity" ? velocity : p.quantity == "acceleration" ? acceleration : displacement;
     const std::size_t offset = 6 * static_cast<std::size_t>(p.node) + (p.quantity == "rotation" ? 3 : 0);
-    std::vector<double> row;
-    for (std::size_t c = 0; c < 3; ++c) row.push_back(source.empty() ? 0.0 : source[offset + c]);
-    probe_files_[k]->append(time, row);
+    Eigen::Vector3d value = Eigen::Vector3d::Zero();
+    if (!source.empty()) value = Eigen::Vector3d(source[offset], source[offset + 1], source[offset + 2]);
+    if (p.direction) probe_files_[k]->append(time, std::vector<double>{p.direction->dot(value)});
+    else probe_files_[k]->append(time, std::vector<double>{value.x(), value.y(), value.z()});
   }
   totals_file_->append(time, std::vector<double>{totals.support_force.x(), totals.support_force.y(),
                                                  totals.support_force.z(), totals.support_moment.x(),

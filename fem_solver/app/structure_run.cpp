@@ -133,7 +133,12 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   if (context.partner != MPI_COMM_NULL) {
     if (!wetted) throw context.config.error_at("structure", "a coupled run needs the element set 'wetted' (the interface)");
     coupling = std::make_unique<StructureCoupling>(context, solver);
+  } else if (context.config.text("structure.initial_state") == "equilibrium") {
+    solver.start_at_equilibrium();
   }
+  if (context.config.text("structure.initial_state") == "equilibrium")
+    context.log.info("the structure starts in static equilibrium with the loads at t = 0: largest displacement ",
+                     solver.largest_displacement(), " m");
   // Implicit windows may be repeated: outputs wait until a window is accepted.
   const bool repeats = coupling && context.config.text("coupling.scheme") == "implicit";
   auto sample = [&]() {
@@ -188,6 +193,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   summary["steps"] = solver.steps();
   summary["end_time_s"] = solver.time();
   summary["time_step_s"] = c.time_step;
+  summary["initial_state"] = context.config.text("structure.initial_state");
   summary["factorisations"] = solver.integrator().factorisations();
   summary["seconds_per_step"] = seconds / static_cast<double>(std::max<long long>(solver.steps(), 1));
   summary["rayleigh"] = {{"alpha_per_s", damping.alpha},

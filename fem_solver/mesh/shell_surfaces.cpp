@@ -1,5 +1,7 @@
 #include "fem_solver/mesh/shell_surfaces.hpp"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -53,6 +55,26 @@ ShellMesh sphere_patch(const SpherePatch& spec) {
   };
   ShellMesh mesh = structured_patch(patch);
   mesh.node_normals = mesh.nodes;  // centred on the origin
+  return mesh;
+}
+
+ShellMesh plate_patch(const PlatePatch& spec) {
+  const Eigen::Vector3d normal = spec.side_u.cross(spec.side_v);
+  if (!(spec.corner.allFinite() && normal.allFinite() &&
+        normal.norm() > 1e-12 * spec.side_u.norm() * spec.side_v.norm() && normal.norm() > 0.0))
+    throw std::invalid_argument("a plate needs two sides that are not parallel and not zero");
+  PatchSpec patch;
+  patch.divisions_u = spec.divisions_u;
+  patch.divisions_v = spec.divisions_v;
+  patch.region = "plate";
+  patch.edge_names = {"u_start", "u_end", "v_start", "v_end"};
+  patch.map = [&](double u, double v) -> Eigen::Vector3d { return spec.corner + u * spec.side_u + v * spec.side_v; };
+  ShellMesh mesh = structured_patch(patch);
+  mesh.node_normals.assign(mesh.nodes.size(), normal.normalized());
+  if (spec.wetted) {
+    auto& wetted = mesh.element_sets["wetted"];
+    for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) wetted.push_back(e);
+  }
   return mesh;
 }
 

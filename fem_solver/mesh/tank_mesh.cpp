@@ -101,7 +101,9 @@ std::vector<int> sorted(std::vector<int> v) {
 ShellMesh tank_mesh(const TankSpec& spec) {
   if (!(spec.radius > 0.0 && spec.wall_height > 0.0 && spec.element_size > 0.0))
     throw std::invalid_argument("a tank needs a positive radius, wall height and element size");
-  if (spec.dome_radius < spec.radius) throw std::invalid_argument("the dome radius must be at least the tank radius");
+  const bool roofed = spec.dome_radius != 0.0;
+  if (roofed && spec.dome_radius < spec.radius)
+    throw std::invalid_argument("the dome radius must be at least the tank radius (or 0: an open top)");
   const double h = spec.element_size;
   // Around: a multiple of 8 so the rings can halve twice and keep the
   // tank's x and y symmetry planes on nodes.
@@ -109,7 +111,7 @@ ShellMesh tank_mesh(const TankSpec& spec) {
   const int layers = std::max(1, static_cast<int>(std::ceil(spec.wall_height / h)));
   ShellMesh mesh;
   const int wall = mesh.region_index("wall");
-  const int roof = mesh.region_index("roof");
+  const int roof = roofed ? mesh.region_index("roof") : -1;
   const int bottom = mesh.region_index("bottom");
   for (int j = 0; j <= layers; ++j)
     for (int i = 0; i < around; ++i) {
@@ -128,19 +130,22 @@ ShellMesh tank_mesh(const TankSpec& spec) {
   const std::size_t wall_elements = mesh.elements.size();
 
   // Roof: sphere cap through the wall's top ring, centre on the axis below it.
-  const double half_angle = std::asin(spec.radius / spec.dome_radius);
+  const double half_angle = roofed ? std::asin(spec.radius / spec.dome_radius) : 0.0;
   const double centre_z = spec.wall_height - spec.dome_radius * std::cos(half_angle);
   const int roof_rings = std::max(2, static_cast<int>(std::ceil(spec.dome_radius * half_angle / h)));
   const Eigen::Vector3d sphere_centre(0.0, 0.0, centre_z);
-  add_disc(
-      mesh, top, roof_rings, h, roof, false,
-      [&](int k, double phi) {
-        const double theta = half_angle * k / roof_rings;
-        return Eigen::Vector3d(spec.dome_radius * std::sin(theta) * std::cos(phi),
-                               spec.dome_radius * std::sin(theta) * std::sin(phi), centre_z + spec.dome_radius * std::cos(theta));
-      },
-      [&](int k) { return spec.dome_radius * std::sin(half_angle * k / roof_rings); },
-      [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x - sphere_centre); });
+  if (roofed) {
+    add_disc(
+        mesh, top, roof_rings, h, roof, false,
+        [&](int k, double phi) {
+          const double theta = half_angle * k / roof_rings;
+          return Eigen::Vector3d(spec.dome_radius * std::sin(theta) * std::cos(phi),
+                                 spec.dome_radius * std::sin(theta) * std::sin(phi),
+                                 centre_z + spec.dome_radius * std::cos(theta));
+        },
+        [&](int k) { return spec.dome_radius * std::sin(half_angle * k / roof_rings); },
+        [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x - sphere_centre); });
+  }
   const std::size_t roof_end = mesh.elements.size();
 
   // Bottom: flat disc of triangles at z = 0.

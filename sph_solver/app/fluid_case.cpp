@@ -17,9 +17,18 @@ namespace {
 
 /// Depth of the extruded walls of a 2D section (the paper's tank is 2 cm deep). The
 /// section's front and back are open, so their edges at z = ±depth/2 must lie
-/// beyond the kernel support of every particle (at z = 0): twice the support each way.
-double section_depth(const FluidModel& model) {
-  return 4.0 * Kernel(model.kernel, model.dimension, model.smoothing_length).support_radius();
+/// beyond the kernel support of every particle (at z = 0): at least twice the
+/// support each way. fluid.section_depth may ask for more (a coupled 2D
+/// structure spans the same depth).
+double section_depth(const CaseConfig& config, const FluidModel& model) {
+  const double least = 4.0 * Kernel(model.kernel, model.dimension, model.smoothing_length).support_radius();
+  const double asked = config.real("fluid.section_depth");
+  if (asked == 0.0) return least;
+  if (asked < least)
+    throw config.error_at("fluid.section_depth", "a 2D section must be at least four kernel supports deep (" +
+                                                     std::to_string(least) + " m) so that its open front and back "
+                                                     "stay out of every particle's support");
+  return asked;
 }
 
 Eigen::AlignedBox3d box_from(const ConfigView& config, const std::string& key) {
@@ -68,7 +77,7 @@ TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
   try {
     if (type == "rectangular_tank")
       return make_rectangular_tank_2d(config.real("fluid.geometry.width"), config.real("fluid.geometry.wall_height"),
-                                      section_depth(model), edge);
+                                      section_depth(config, model), edge);
     if (type == "overflow_tank") {
       OverflowTank2d tank;
       tank.inner_width = config.real("fluid.geometry.width");
@@ -76,7 +85,7 @@ TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
       tank.margin = config.real("fluid.geometry.catch_margin");
       tank.plate_thickness = 2.0 * model.spacing;
       tank.outer_wall_height = tank.inner_wall_height + 0.5;
-      tank.depth = section_depth(model);
+      tank.depth = section_depth(config, model);
       tank.target_edge = edge;
       return make_overflow_tank_2d(tank);
     }

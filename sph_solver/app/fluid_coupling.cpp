@@ -14,7 +14,7 @@ void check_coupled_fluid_case(const CaseConfig& config) {
     coupling::require_step_within_window(config, "fluid.time_step.value", settings);
 }
 
-FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
+FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const Eigen::Vector3d& ground_acceleration)
     : solver_(solver),
       participant_(coupling::Side::fluid, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
@@ -34,6 +34,19 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
       coupled_positions.insert(coupled_positions.end(), reference_[v].data(), reference_[v].data() + 3);
       mapping_distance_ = std::max(mapping_distance_, probe.distances()[v]);
     }
+  if (solver.model().dimension == 2) {
+    // The extruded section's depth; a 2D wall's vertices come in pairs at z = ±d/2,
+    // and both of a pair must be coupled (else the coupled wall would twist).
+    double low = 0.0, high = 0.0;
+    for (const auto& x : reference_) low = std::min(low, x.z()), high = std::max(high, x.z());
+    force_scale_ = high - low;
+    long long balance = 0;
+    for (const int v : coupled_) balance += reference_[static_cast<std::size_t>(v)].z() > 0.0 ? 1 : -1;
+    if (balance != 0)
+      throw context.config.error_at("coupling", "the structure's wetted surface must span the fluid's 2D section, z from " +
+                                                    std::to_string(low) + " to " + std::to_string(high) +
+                                                    " m (fluid.section_depth): only one side's wall vertices lie on it");
+  }
   if (coupled_.empty())
     throw context.config.error_at("coupling", "no wall vertex of the fluid lies within half a particle spacing (" +
                                                   std::to_string(tolerance) +
@@ -42,7 +55,7 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver)
   participant_.set_own_vertices(coupled_positions);
   values_.assign(3 * coupled_.size(), 0.0);
   wall_velocity_.assign(values_.size(), 0.0);
-  participant_.write(coupling::Field::force, values_);  // no initial forces yet (see the header)
+  write_forces(solver.present_wall_forces(ground_acceleration));
   participant_.initialize();
   positions_ = reference_;
   velocities_.assign(reference_.size(), Eigen::Vector3d::Zero());
@@ -63,14 +76,19 @@ void FluidCoupling::before_step(double dt) {
   solver_.move_walls(positions_, velocities_);
 }
 
-bool FluidCoupling::after_step(double dt) {
-  const auto& forces = solver_.local_wall_forces();  // this rank's share: summed over ranks by the coupling
+void FluidCoupling::write_forces(const std::vector<Eigen::Vector3d>& forces) {
+  // This rank's share: the coupling sums the shares over the fluid's ranks.
   for (std::size_t k = 0; k < coupled_.size(); ++k)
     for (int c = 0; c < 3; ++c)
-      values_[3 * k + static_cast<std::size_t>(c)] = forces[static_cast<std::size_t>(coupled_[k])][c];
+      values_[3 * k + static_cast<std::size_t>(c)] = force_scale_ * forces[static_cast<std::size_t>(coupled_[k])][c];
   participant_.write(coupling::Field::force, values_);
+}
+
+bool FluidCoupling::after_step(double dt) {
+  write_forces(solver_.local_wall_forces());
   participant_.advance(dt);
-  if (participant_.requires_reading_checkpoint()) {
+  rolled_back_ = participant_.requires_reading_checkpoint();
+  if (rolled_back_) {
     solver_.restore(checkpoint_);
     return false;
   }
@@ -89,6 +107,7 @@ nlohmann::json FluidCoupling::summary() const {
           {"coupled_wall_vertices", coupled_.size()},
           {"interface_vertices", participant_.interface_mesh().vertex_count()},
           {"largest_mapping_distance_m", mapping_distance_},
+          {"section_depth_m", solver_.model().dimension == 2 ? nlohmann::json(force_scale_) : nlohmann::json(nullptr)},
           {"wait_s", timings.wait},
           {"work_s", timings.work}};
 }

@@ -10,8 +10,13 @@
 // go to the structure (averaged over the window, eq 16). Implicit windows roll
 // the particles back to the window start.
 //
-// Not yet: the fluid's forces at t = 0 (the structure receives zero initial
-// forces and meets the liquid's weight over the first window).
+// A 2D fluid is a section of depth d (its walls are extruded over z in
+// [-d/2, d/2]); its wall forces are per unit depth, and the structure (a strip
+// across the section) receives the forces on the depth d: f d.
+//
+// At t = 0 the structure receives the forces of the liquid as it starts
+// (FluidSolver::present_wall_forces): a structure that balances them (its
+// initial acceleration) does not meet the liquid's weight as a sudden load.
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -29,7 +34,9 @@ void check_coupled_fluid_case(const CaseConfig& config);
 class FluidCoupling {
  public:
   /// Collective over both programs: handshake, interface, initial data.
-  FluidCoupling(ProgramContext& context, FluidSolver& solver);
+  /// The structure receives the fluid's forces at t = 0 as its initial load
+  /// (the liquid at rest under gravity and the ground acceleration a_g(0)).
+  FluidCoupling(ProgramContext& context, FluidSolver& solver, const Eigen::Vector3d& ground_acceleration);
 
   [[nodiscard]] bool ongoing() const { return participant_.is_ongoing(); }
   [[nodiscard]] double time() const { return participant_.time(); }
@@ -42,19 +49,26 @@ class FluidCoupling {
   /// true when a window was accepted; false mid-window or when the window
   /// must be repeated (the particles are then back at its start, time() too).
   bool after_step(double dt);
+  /// True when the last after_step() rolled the particles back (an implicit
+  /// window to be repeated).
+  [[nodiscard]] bool rolled_back() const { return rolled_back_; }
   void finish();
   [[nodiscard]] nlohmann::json summary() const;
 
  private:
+  void write_forces(const std::vector<Eigen::Vector3d>& forces);
+
   FluidSolver& solver_;
   coupling::Participant participant_;
   bool repeats_ = false;
+  bool rolled_back_ = false;
   std::vector<Eigen::Vector3d> reference_;  ///< every wall vertex at rest
   std::vector<int> coupled_;                ///< wall vertices on the interface
   std::vector<double> values_, wall_velocity_;  ///< 3 per coupled vertex
   std::vector<Eigen::Vector3d> positions_, velocities_;
   FluidSolver::Checkpoint checkpoint_;
   double mapping_distance_ = 0.0;
+  double force_scale_ = 1.0;  ///< the section depth in 2D (forces per unit depth -> on the section)
 };
 
 }  // namespace tankfsi::sph

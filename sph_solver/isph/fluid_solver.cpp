@@ -151,6 +151,31 @@ void FluidSolver::redistribute() {
   }
 }
 
+std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vector3d& ground_acceleration) {
+  remove_escaped();
+  redistribute();
+  halo_.build(comm_, decomposition_, particles_.position, kernel_.support_radius() + 0.5 * model_.spacing);
+  const int owned = particles_.count();
+  const auto mass = with_ghosts(halo_, particles_.mass);
+  const auto velocity = with_ghosts(halo_, particles_.velocity);
+  auto pressure = particles_.pressure;
+  halo_.exchange(pressure);
+  const Configuration now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
+  const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
+  const auto density = with_ghosts(halo_, kernel_density(n, mass));
+  // The walls' pressure gradient rho (v* - v_w) . n / dt with v* = v + dt F:
+  // any dt gives rho F . n for a liquid at rest on resting walls.
+  const double dt = 1.0;
+  std::vector<Eigen::Vector3d> predicted(at(owned));
+  const Eigen::Vector3d body_force = model_.body_force(ground_acceleration);
+  for (int i = 0; i < owned; ++i) predicted[at(i)] = particles_.velocity[at(i)] + dt * body_force;
+  std::vector<Eigen::Vector3d> forces(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
+  // Only the walls' reactions are wanted, not the particles' accelerations.
+  static_cast<void>(viscous_acceleration(n, mass, density, velocity, forces));
+  static_cast<void>(pressure_acceleration(n, mass, density, pressure, predicted, dt, forces));
+  return forces;
+}
+
 StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_acceleration) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("FluidSolver::step: dt must be positive");
   StepReport report;

@@ -76,6 +76,13 @@ class FluidSolver {
   /// fails or dt breaches the motion margin of the halo.
   StepReport step(double t, double dt, const Eigen::Vector3d& ground_acceleration);
 
+  /// Collective: this rank's share of the force of the fluid on each wall
+  /// vertex in the present state, with the particles' present pressures and
+  /// under the body force of ground acceleration a_g (the walls' Neumann
+  /// pressure gradient rho (g - a_g) . n for a liquid at rest): the forces a
+  /// coupled structure carries at t = 0. The state is not changed.
+  [[nodiscard]] std::vector<Eigen::Vector3d> present_wall_forces(const Eigen::Vector3d& ground_acceleration);
+
   /// Moves the walls (a coupled, deforming structure): every wall vertex's
   /// position and velocity, tank-base frame.
   void move_walls(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities) {

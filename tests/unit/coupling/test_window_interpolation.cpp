@@ -43,6 +43,17 @@ TEST_CASE("eq 17: chi = 1 reaches the average at the window end, chi = 2 keeps i
   CHECK(conserving.mean()[0] == 16.0);
 }
 
+TEST_CASE("held window average: the load is the average over the whole window, in every window", "[coupling][time]") {
+  LoadRamp held(std::vector<double>{10.0});
+  held.hold(std::vector<double>{16.0});
+  for (const double f : {0.0, 0.3, 1.0}) CHECK(held.at(f)[0] == 16.0);
+  CHECK(held.mean()[0] == 16.0);
+  held.next_window();
+  held.hold(std::vector<double>{16.0});  // a steady force stays steady: no zig-zag
+  CHECK(held.at(0.0)[0] == 16.0);
+  CHECK(held.at(1.0)[0] == 16.0);
+}
+
 TEST_CASE("eq 18: the wall moves at constant velocity from its start to the target", "[coupling][time]") {
   DisplacementPath path(std::vector<double>{0.0, 1.0, 2.0});
   path.aim({0.5, 1.0, 1.0});

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "common/excitation/ground_motion.hpp"
+#include "fem_solver/analysis/static_analysis.hpp"
 #include "fem_solver/analysis/structure_solver.hpp"
 #include "fem_solver/mesh/shell_surfaces.hpp"
 #include "patch_meshes.hpp"
@@ -212,4 +213,25 @@ TEST_CASE("a restored checkpoint repeats the steps exactly", "[fem][coupling-api
   REQUIRE(largest(first.first) > 0.0);
   CHECK(largest_difference(first.first, again.first) <= 1e-12 * largest(first.first));
   CHECK(largest_difference(first.second, again.second) <= 1e-12 * largest(first.second));
+}
+
+TEST_CASE("a structure started in equilibrium with its loads stays there: the static solution, at rest",
+          "[fem][coupling-api]") {
+  const ShellModel model = half_cylinder();
+  LoadSet pressure;
+  pressure.surfaces.push_back(SurfaceLoad{"shell", 5e4, Eigen::Vector3d::Zero()});
+  const tankfsi::ZeroGroundMotion still;
+  StructureSystem system(MPI_COMM_WORLD, half_cylinder(), clamp(model.mesh));
+  StructureSolver solver(system, RayleighCoefficients{2.0, 1e-5}, pressure, still);
+  solver.start_at_equilibrium();
+  const NodalValues initial = solver.displacement();
+  StructureSystem static_system(MPI_COMM_WORLD, half_cylinder(), clamp(model.mesh));
+  const NodalValues expected = solve_static(static_system, pressure).displacement;
+  // The same linear system solved twice: equal to the solver's round-off.
+  CHECK(largest_difference(initial, expected) <= 1e-10 * largest(expected));
+  CHECK(largest(solver.velocity()) == 0.0);
+  for (int k = 0; k < 20; ++k) solver.advance(1e-4);
+  // Newmark leaves a balanced state alone (up to the round-off of F - K u).
+  CHECK(largest_difference(solver.displacement(), expected) <= 1e-9 * largest(expected));
+  CHECK(largest(solver.velocity()) <= 1e-9 * largest(expected) / 1e-4);
 }

@@ -89,6 +89,31 @@ TEST_CASE("tank mesh is watertight and consistently oriented outward", "[fem][me
   CHECK(mesh.nodes_of("bottom") == mesh.node_sets.at("base"));
 }
 
+TEST_CASE("open-top tank: no roof, the wall's top ring a free edge, the wetted set as with a roof", "[fem][mesh]") {
+  TankSpec t = small_tank();
+  t.dome_radius = 0.0;
+  const ShellMesh open = tank_mesh(t);
+  REQUIRE_NOTHROW(open.check());
+  CHECK_THROWS_AS(open.elements_of("roof"), std::out_of_range);
+  // Every edge that has no reverse is on the top ring z = H.
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& e : open.elements)
+    for (int k = 0; k < e.node_count(); ++k)
+      ++directed[{e.nodes[static_cast<std::size_t>(k)], e.nodes[static_cast<std::size_t>((k + 1) % e.node_count())]}];
+  std::size_t free_edges = 0;
+  for (const auto& [edge, count] : directed)
+    if (directed.count({edge.second, edge.first}) == 0) {
+      ++free_edges;
+      CHECK(open.nodes[static_cast<std::size_t>(edge.first)].z() == Approx(t.wall_height));
+      CHECK(open.nodes[static_cast<std::size_t>(edge.second)].z() == Approx(t.wall_height));
+    }
+  CHECK(free_edges == open.node_sets.at("wall_top").size());
+  const ShellMesh roofed = tank_mesh(small_tank());
+  CHECK(open.element_sets.at("wetted").size() == roofed.element_sets.at("wetted").size());
+  t.dome_radius = 10.0;  // below the tank radius, and not 0
+  CHECK_THROWS_AS(tank_mesh(t), std::invalid_argument);
+}
+
 TEST_CASE("wetted interface: triangles over the mesh's own nodes, facing the liquid", "[fem][mesh]") {
   const ShellMesh mesh = tank_mesh(small_tank());
   const InterfaceMesh interface = extract_interface(mesh, "wetted");
@@ -140,4 +165,33 @@ TEST_CASE("cylinder and sphere patches: consistently oriented, normals away from
     CHECK((defect.elements[0] == 5 || defect.elements[1] == 5));
     CHECK(std::string(defect.what()).find("oriented oppositely") != std::string::npos);
   }
+}
+
+TEST_CASE("plate patch: the parallelogram, its edges, its normal and the wetted set", "[fem][mesh]") {
+  PlatePatch p;
+  p.corner = Eigen::Vector3d(0.0, 0.0, -0.1);
+  p.side_u = Eigen::Vector3d(1.0, 0.0, 0.0);
+  p.side_v = Eigen::Vector3d(0.0, 0.0, 0.2);
+  p.divisions_u = 10;
+  p.divisions_v = 2;
+  p.wetted = true;
+  const ShellMesh mesh = plate_patch(p);
+  REQUIRE_NOTHROW(mesh.check());
+  CHECK(mesh.nodes.size() == 33);
+  CHECK(mesh.quad_count() == 20);
+  CHECK(mesh.element_sets.at("wetted").size() == 20);
+  CHECK(mesh.node_sets.at("u_start").size() == 3);
+  CHECK(mesh.node_sets.at("v_end").size() == 11);
+  for (const int n : mesh.node_sets.at("u_end")) CHECK(mesh.nodes[static_cast<std::size_t>(n)].x() == Approx(1.0));
+  for (const int n : mesh.node_sets.at("v_start")) CHECK(mesh.nodes[static_cast<std::size_t>(n)].z() == Approx(-0.1));
+  // x x z = -y: every element's own normal and the exact node normals agree.
+  for (const auto& e : mesh.elements) {
+    const auto x = [&](int k) { return mesh.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(k)])]; };
+    CHECK((x(1) - x(0)).cross(x(2) - x(0)).normalized().isApprox(Eigen::Vector3d(0, -1, 0)));
+  }
+  for (const auto& n : mesh.node_normals) CHECK(n.isApprox(Eigen::Vector3d(0, -1, 0)));
+  p.wetted = false;
+  CHECK(plate_patch(p).element_sets.count("wetted") == 0);
+  p.side_v = 2.0 * p.side_u;
+  CHECK_THROWS_AS(plate_patch(p), std::invalid_argument);
 }

@@ -1,0 +1,76 @@
+"""One coupled job (sph_solver : fem_solver) under mpirun, shared by the
+validation checks and the stability study: both programs get the same
+--set overrides (the handshake compares their settings), each its own run
+folder under `folder`."""
+import json
+import os
+import pathlib
+import shlex
+import subprocess
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+# Open MPI as root and with more ranks than cores (scripts/common.sh does the same).
+MPI_ENVIRONMENT = {
+    "OMPI_ALLOW_RUN_AS_ROOT": "1",
+    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+    "OMPI_MCA_rmaps_base_oversubscribe": "1",
+}
+
+
+class CoupledRun:
+    """The outcome of one job: exit status, wall seconds, both summaries (None
+    when a program wrote none), the tail of its output, and its folders."""
+
+    def __init__(self, folder, status, seconds, output):
+        self.folder = pathlib.Path(folder)
+        self.status = status
+        self.seconds = seconds
+        self.output = output
+        self.fluid = self._summary("fluid")
+        self.structure = self._summary("structure")
+
+    def _summary(self, side):
+        path = self.folder / side / "summary.json"
+        return json.loads(path.read_text()) if path.exists() else None
+
+    def probe(self, side, name):
+        """probes/<name>.csv of one side as a dict of column -> list of floats."""
+        path = self.folder / side / "probes" / f"{name}.csv"
+        lines = path.read_text().split()
+        header = lines[0].split(",")
+        rows = [[float(v) for v in line.split(",")] for line in lines[1:]]
+        return {h: [r[k] for r in rows] for k, h in enumerate(header)}
+
+    def failure(self):
+        """The first line naming an error, or the last lines of the output."""
+        for line in self.output.splitlines():
+            if "error" in line.lower() and "MPI_ABORT" not in line:
+                return line.strip()
+        return self.output.strip()[-500:]
+
+
+def run_coupled(case, folder, settings=(), fluid_ranks=1, structure_ranks=1, sph=None, fem=None, timeout=3600,
+                launcher=("mpirun",), structure_command=None):
+    """structure_command: the structure side's whole command line instead of
+    fem_solver's (another partner program, e.g. coupling/examples/prescribed_wall)."""
+    folder = pathlib.Path(folder)
+    binaries = ROOT / "build" / "bin"
+    sph = sph or str(binaries / "sph_solver")
+    fem = fem or str(binaries / "fem_solver")
+    overrides = []
+    for s in settings:
+        overrides += ["--set", s]
+    command = list(launcher) + ["-np", str(fluid_ranks), sph, str(case), "--output", str(folder / "fluid")] + overrides
+    if structure_command is None:
+        structure_command = [fem, str(case), "--output", str(folder / "structure")] + overrides
+    command += [":", "-np", str(structure_ranks)] + list(structure_command)
+    environment = dict(os.environ, **MPI_ENVIRONMENT)
+    start = time.monotonic()
+    try:
+        result = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=environment)
+        status, output = result.returncode, result.stdout + result.stderr
+    except subprocess.TimeoutExpired as e:
+        status, output = -1, f"timed out after {timeout} s: {shlex.join(command)}\n{e.stdout or ''}{e.stderr or ''}"
+    return CoupledRun(folder, status, time.monotonic() - start, output)
