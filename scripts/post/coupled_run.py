@@ -44,11 +44,37 @@ class CoupledRun:
         return {h: [r[k] for r in rows] for k, h in enumerate(header)}
 
     def failure(self):
-        """The first line naming an error, or the last lines of the output."""
-        for line in self.output.splitlines():
-            if "error" in line.lower() and "MPI_ABORT" not in line:
-                return line.strip()
-        return self.output.strip()[-500:]
+        """The programs' own error lines (Open MPI's are skipped), or the end of the output."""
+        said = [line.strip() for line in self.output.splitlines()
+                if "error" in line.lower() and "MPI_ABORT" not in line and "ORTE_ERROR_LOG" not in line]
+        return " | ".join(said[:4]) if said else self.output.strip()[-500:]
+
+
+def derived_case(case, folder, overrides=(), sections=None):
+    """A copy of `case` in `folder` with whole sections replaced (`sections`:
+    name -> mapping) and KEY=VALUE overrides (dotted keys, YAML values): for
+    partners that read the case file and take no --set, and for settings that
+    remove keys (both sides must read the same case: the handshake compares
+    them). A case that reads input files is refused (its copy would lose
+    their relative paths)."""
+    import yaml
+    text = pathlib.Path(case).read_text()
+    config = yaml.safe_load(text)
+    if "file" in text:
+        raise ValueError(f"{case}: a case that reads input files cannot be copied here")
+    config.update(sections or {})
+    for item in overrides:
+        key, value = item.split("=", 1)
+        node = config
+        parts = key.split(".")
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = yaml.safe_load(value)
+    folder = pathlib.Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / "case.yaml"
+    path.write_text(yaml.safe_dump(config, sort_keys=False))
+    return path
 
 
 def run_coupled(case, folder, settings=(), fluid_ranks=1, structure_ranks=1, sph=None, fem=None, timeout=3600,

@@ -23,7 +23,7 @@ import sys
 import yaml
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from coupled_run import CoupledRun, run_coupled  # noqa: E402
+from coupled_run import CoupledRun, derived_case, run_coupled  # noqa: E402
 
 # The coupling section of each variant (the case's own is replaced, its
 # timeout kept): keys that only one scheme takes cannot be overridden with --set.
@@ -41,17 +41,11 @@ VARIANTS = {
 
 def variant_case(case, variant, window, folder):
     """The case with the variant's coupling section, written into `folder`."""
-    config = yaml.safe_load(pathlib.Path(case).read_text())
-    if "file" in pathlib.Path(case).read_text():
-        sys.exit(f"{case}: a case that reads input files is not supported here (its copy would lose their paths)")
     coupling = dict(VARIANTS[variant], time_window=window)
-    if "timeout" in config.get("coupling", {}):
-        coupling["timeout"] = config["coupling"]["timeout"]
-    config["coupling"] = coupling
-    folder.mkdir(parents=True, exist_ok=True)
-    path = folder / "case.yaml"
-    path.write_text(yaml.safe_dump(config, sort_keys=False))
-    return path
+    own = yaml.safe_load(pathlib.Path(case).read_text()).get("coupling", {})
+    if "timeout" in own:
+        coupling["timeout"] = own["timeout"]
+    return derived_case(case, folder, sections={"coupling": coupling})
 
 
 def oscillation_period(times, values, mean):
