@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "coupling/mapping/nearest_projection.hpp"
+#include "sph_solver/app/interface_wall.hpp"
 #include "coupling/settings.hpp"
 
 namespace tankfsi::sph {
@@ -20,20 +20,23 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
                    coupling::case_fingerprints(context.config)),
       repeats_(context.config.text("coupling.scheme") == "implicit") {
   participant_.exchange_interface();
-  const TriangleMesh& mesh = solver.walls().mesh();
-  reference_ = mesh.vertices();
-  // Which wall vertices lie on the structure's wetted surface.
-  std::vector<double> all;
-  for (const auto& x : reference_) all.insert(all.end(), x.data(), x.data() + 3);
-  const coupling::NearestProjection probe(participant_.interface_mesh(), all);
+  // The wetted surface becomes the wall, vertex for vertex (interface_wall.hpp).
   const double tolerance = 0.5 * solver.model().spacing;
+  InterfaceWall wall;
+  try {
+    wall = build_interface_wall(solver.walls().mesh(), participant_.interface_mesh(), tolerance);
+  } catch (const std::invalid_argument& e) {
+    throw context.config.error_at("coupling", e.what());
+  }
+  solver.replace_walls(wall.mesh);
+  reference_ = solver.walls().mesh().vertices();
+  coupled_ = wall.coupled;
+  mapping_distance_ = wall.largest_distance;
   std::vector<double> coupled_positions;
-  for (std::size_t v = 0; v < reference_.size(); ++v)
-    if (probe.distances()[v] <= tolerance) {
-      coupled_.push_back(static_cast<int>(v));
-      coupled_positions.insert(coupled_positions.end(), reference_[v].data(), reference_[v].data() + 3);
-      mapping_distance_ = std::max(mapping_distance_, probe.distances()[v]);
-    }
+  for (const int v : coupled_) {
+    const auto& x = reference_[static_cast<std::size_t>(v)];
+    coupled_positions.insert(coupled_positions.end(), x.data(), x.data() + 3);
+  }
   if (solver.model().dimension == 2) {
     // The extruded section's depth; a 2D wall's vertices come in pairs at z = ±d/2,
     // and both of a pair must be coupled (else the coupled wall would twist).
@@ -47,11 +50,10 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
                                                     std::to_string(low) + " to " + std::to_string(high) +
                                                     " m (fluid.section_depth): only one side's wall vertices lie on it");
   }
-  if (coupled_.empty())
-    throw context.config.error_at("coupling", "no wall vertex of the fluid lies within half a particle spacing (" +
-                                                  std::to_string(tolerance) +
-                                                  " m) of the structure's wetted surface: do both programs model the "
-                                                  "same tank in the same frame?");
+  context.log.info("coupling: the structure's ", wall.interface_vertices, "-vertex wetted surface replaces ",
+                   wall.replaced_triangles, " of the fluid's wall triangles", wall.flipped ? " (turned to face the liquid)" : "",
+                   "; ", coupled_.size() - wall.interface_vertices, " junction vertices follow it (farthest ",
+                   mapping_distance_, " m from it)");
   participant_.set_own_vertices(coupled_positions);
   values_.assign(3 * coupled_.size(), 0.0);
   wall_velocity_.assign(values_.size(), 0.0);
@@ -59,9 +61,6 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
   participant_.initialize();
   positions_ = reference_;
   velocities_.assign(reference_.size(), Eigen::Vector3d::Zero());
-  context.log.info("coupling: ", coupled_.size(), " of ", reference_.size(), " wall vertices on the structure's ",
-                   participant_.interface_mesh().vertex_count(), "-vertex wetted surface (farthest ", mapping_distance_,
-                   " m from it)");
 }
 
 void FluidCoupling::before_step(double dt) {

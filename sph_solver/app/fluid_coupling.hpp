@@ -1,14 +1,13 @@
 #pragma once
 // FluidCoupling: sph_solver as the fluid side of a coupled job (METHOD.md §2,
-// §4; coupling/participant.hpp). The fluid keeps its own wall mesh; the wall
-// vertices that lie on the structure's wetted surface (within half a
-// particle spacing of its triangles: both programs model the same tank, each
-// with its own faceting) are coupled, mapped onto the structure's triangles
-// by nearest projection. Every step they move with the structure (eq 18:
-// constant velocity over the window, positions at the step's end), the other
-// walls stay put; every step's forces of the fluid on the coupled vertices
-// go to the structure (averaged over the window, eq 16). Implicit windows roll
-// the particles back to the window start.
+// §4; coupling/participant.hpp). The structure's wetted surface replaces the
+// fluid's own wall triangles on it, vertex for vertex (interface_wall.hpp);
+// the fluid's other walls stay. The interface vertices, and the fluid's own
+// vertices where its kept walls meet the wetted surface (mapped onto it by
+// nearest projection), move with the structure every step (eq 18: constant
+// velocity over the window, positions at the step's end); every step's forces
+// of the fluid on them go to the structure (averaged over the window, eq 16).
+// Implicit windows roll the particles back to the window start.
 //
 // A 2D fluid is a section of depth d (its walls are extruded over z in
 // [-d/2, d/2]); its wall forces are per unit depth, and the structure (a strip

@@ -83,6 +83,12 @@ class FluidSolver {
   /// coupled structure carries at t = 0. The state is not changed.
   [[nodiscard]] std::vector<Eigen::Vector3d> present_wall_forces(const Eigen::Vector3d& ground_acceleration);
 
+  /// Replaces the walls before the first step (a coupled run's wall, whose
+  /// part on the structure's wetted surface is the structure's own mesh).
+  void replace_walls(TriangleMesh walls) {
+    walls_.replace_mesh(std::move(walls));
+    wall_force_.assign(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
+  }
   /// Moves the walls (a coupled, deforming structure): every wall vertex's
   /// position and velocity, tank-base frame.
   void move_walls(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities) {

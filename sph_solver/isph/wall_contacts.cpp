@@ -46,6 +46,13 @@ WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& k
   update_curvature();
 }
 
+void WallModel::replace_mesh(TriangleMesh mesh) {
+  *mesh_ = std::move(mesh);  // the same object: the index keeps pointing to it
+  index_.rebuild();
+  velocities_.assign(mesh_->vertex_count(), Eigen::Vector3d::Zero());
+  update_curvature();
+}
+
 void WallModel::move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities) {
   if (velocities.size() != mesh_->vertex_count())
     throw std::invalid_argument("WallModel::move: one velocity per vertex is needed");

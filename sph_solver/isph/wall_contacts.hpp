@@ -61,6 +61,9 @@ class WallModel {
   /// in the tank-base frame. Updates the index and curvature. (The wall's
   /// acceleration is not needed: the Neumann wall pressure follows from v* - v_wall.)
   void move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities);
+  /// Replaces the whole wall (a coupled run's, build_interface_wall): new
+  /// topology, at rest; the kernel tables stay (they depend on the kernel only).
+  void replace_mesh(TriangleMesh mesh);
 
  private:
   void update_curvature();
