@@ -61,6 +61,12 @@ bool in_region(const Eigen::Vector3d& x, const std::optional<Eigen::AlignedBox3d
   return true;
 }
 
+bool passes(const TriangleIndex& index, const TriangleMesh& mesh, const FillSpec& spec, const Eigen::Vector3d& x) {
+  if (!(x[spec.dimension - 1] < spec.fill_level) || !in_region(x, spec.region, spec.dimension)) return false;
+  const auto hit = index.nearest(x, std::numeric_limits<double>::infinity());
+  return hit && signed_distance(x, mesh, hit->triangle, hit->closest) >= (0.5 - clearance_tolerance) * spec.spacing;
+}
+
 // Lattice points that pass the level, region and clearance tests, in lattice order.
 std::vector<Eigen::Vector3d> lattice_points(const TriangleMesh& mesh, const FillSpec& spec) {
   const int dims = spec.dimension;
@@ -87,12 +93,41 @@ std::vector<Eigen::Vector3d> lattice_points(const TriangleMesh& mesh, const Fill
     for (int j = range[1].first; j <= range[1].second; ++j)
       for (int i = range[0].first; i <= range[0].second; ++i) {
         const Eigen::Vector3d x(coordinate(0, i), coordinate(1, j), coordinate(2, k));
-        if (!(x[up] < spec.fill_level) || !in_region(x, spec.region, dims)) continue;
-        const auto hit = index.nearest(x, std::numeric_limits<double>::infinity());
-        if (hit && signed_distance(x, mesh, hit->triangle, hit->closest) >= (0.5 - clearance_tolerance) * h)
-          points.push_back(x);
+        if (passes(index, mesh, spec, x)) points.push_back(x);
       }
   return points;
+}
+
+struct FilledPoints {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> volumes;
+};
+
+// Rings about the z axis (filling.hpp), layer by layer from the walls' lowest z.
+FilledPoints ring_points(const TriangleMesh& mesh, const FillSpec& spec) {
+  const double h = spec.spacing;
+  const double radius = *spec.cylinder_radius;
+  const TriangleIndex index(mesh);
+  const double floor = spec.lattice_origin ? spec.lattice_origin->z() : mesh.bounding_box().min().z();
+  FilledPoints out;
+  for (int k = 0; floor + (k + 0.5) * h < spec.fill_level; ++k) {
+    const double z = floor + (k + 0.5) * h;
+    for (int m = 0; radius - (m + 0.5) * h > 0.0; ++m) {
+      const double r = radius - (m + 0.5) * h;
+      const int n = std::max(1, static_cast<int>(std::lround(2.0 * std::acos(-1.0) * r / h)));
+      const bool innermost = r - h <= 0.0;
+      const double area = innermost ? std::acos(-1.0) * (r + 0.5 * h) * (r + 0.5 * h) : 2.0 * std::acos(-1.0) * r * h;
+      const double turn = (m % 2 == 0 ? 0.0 : 0.5) + (k % 2 == 0 ? 0.0 : 0.25);
+      for (int i = 0; i < n; ++i) {
+        const double phi = 2.0 * std::acos(-1.0) * (i + turn) / n;
+        const Eigen::Vector3d x(n == 1 ? 0.0 : r * std::cos(phi), n == 1 ? 0.0 : r * std::sin(phi), z);
+        if (!passes(index, mesh, spec, x)) continue;
+        out.points.push_back(x);
+        out.volumes.push_back(area / n * h);
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -108,7 +143,16 @@ Particles fill_tank(const TriangleMesh& walls, const FillSpec& spec) {
   if (planar && !(mesh.bounding_box().min().z() < 0.0 && mesh.bounding_box().max().z() > 0.0))
     throw std::invalid_argument("fill_tank: 2D walls must straddle the plane z = 0 of the particles");
 
-  const std::vector<Eigen::Vector3d> points = lattice_points(mesh, spec);
+  if (spec.cylinder_radius && !(spec.dimension == 3 && *spec.cylinder_radius > 0.0))
+    throw std::invalid_argument("fill_tank: a cylindrical filling is 3D, with a positive radius");
+  FilledPoints filled;
+  if (spec.cylinder_radius) {
+    filled = ring_points(mesh, spec);
+  } else {
+    filled.points = lattice_points(mesh, spec);
+    filled.volumes.assign(filled.points.size(), std::pow(spec.spacing, spec.dimension));
+  }
+  const std::vector<Eigen::Vector3d>& points = filled.points;
   if (points.empty())
     throw std::invalid_argument("fill_tank: no lattice point lies inside the walls below the fill level " +
                                 std::to_string(spec.fill_level) + " (and in the region, if any)");
@@ -116,12 +160,12 @@ Particles fill_tank(const TriangleMesh& walls, const FillSpec& spec) {
   const int up = spec.dimension - 1;
   double surface = -std::numeric_limits<double>::infinity();
   for (const auto& x : points) surface = std::max(surface, x[up] + 0.5 * spec.spacing);
-  const double mass = spec.density * std::pow(spec.spacing, spec.dimension);
   Particles particles;
   for (std::size_t n = 0; n < points.size(); ++n) {
     const double pressure =
         spec.hydrostatic_pressure ? spec.density * spec.gravity * (surface - points[n][up]) : 0.0;
-    particles.push_back(static_cast<std::int64_t>(n), points[n], Eigen::Vector3d::Zero(), mass, pressure);
+    particles.push_back(static_cast<std::int64_t>(n), points[n], Eigen::Vector3d::Zero(),
+                        spec.density * filled.volumes[n], pressure);
   }
   return particles;
 }

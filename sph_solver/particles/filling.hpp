@@ -22,7 +22,17 @@
 // (|n_z| <= 1e-6) are used, so a closed thin box with front and back faces fills like
 // the open extruded walls of tank_meshes.hpp. The walls must straddle the plane z = 0.
 //
-// Each particle gets mass ρ L₀^D, zero velocity, and pressure zero or hydrostatic
+// Cylindrical tanks (cylinder_radius, 3D): a cubic lattice leaves gaps of up to L₀
+// between its outer particles and a curved wall, into which the liquid falls at the
+// start (measured: the wall force drops to half the weight in 0.02 s). Rings follow
+// the wall instead: layer k at z = (k + 1/2) L₀, ring m at radius
+// r_m = R - (m + 1/2) L₀ (m = 0, 1, ... while r_m > 0) with n_m = max(1, round(2π r_m / L₀))
+// particles, every other ring turned by half a pitch; each particle's volume is its
+// share of its annulus, 2π r_m L₀ / n_m times L₀ (the innermost: the disc of radius
+// r_m + L₀/2 over n_m), so the masses sum to ρ π R² times the filled depth exactly.
+// The same clearance and level tests apply.
+//
+// Each lattice particle gets mass ρ L₀^D, zero velocity, and pressure zero or hydrostatic
 // ρ g (surface - height), the surface being the top of the highest particle layer
 // (the level itself when it falls on a layer boundary). Ids are 0..N-1 in lattice
 // order, x fastest, then y, then z. The result depends on the walls and the spec only,
@@ -43,6 +53,9 @@ struct FillSpec {
   int dimension = 3;        ///< 2 or 3
   std::optional<Eigen::AlignedBox3d> region;         ///< keep only particles inside (2D: x and y)
   std::optional<Eigen::Vector3d> lattice_origin;      ///< default: the walls' bounding-box minimum
+  /// 3D upright cylinder about the z axis: rings instead of the cubic lattice
+  /// (see below), inside this radius (the apothem of the wall's polygon).
+  std::optional<double> cylinder_radius;
   bool hydrostatic_pressure = false;                  ///< else zero pressure
   double gravity = 9.81;                              ///< |g| for the hydrostatic pressure
 };

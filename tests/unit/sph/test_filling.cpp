@@ -195,6 +195,49 @@ TEST_CASE("filling: a 3D cylinder, predicted layer by layer from the inscribed p
   for (std::size_t n = 1; n < p.size(); ++n) CHECK(p.position[n].z() >= p.position[n - 1].z());  // z slowest
 }
 
+TEST_CASE("filling: rings in a cylinder hold the liquid's mass exactly and leave no gap at the wall", "[geometry]") {
+  const double radius = 0.5, level = 0.5, spacing = 0.05;
+  const int segments = 32;
+  const TriangleMesh tank = make_cylindrical_tank(radius, 0.7, segments, 7, 5, std::nullopt);
+  FillSpec spec;
+  spec.spacing = spacing;
+  spec.density = 1000.0;
+  spec.fill_level = level;
+  spec.cylinder_radius = radius * std::cos(std::numbers::pi / segments);  // the polygon's apothem
+  const Particles p = fill_tank(tank, spec);
+  // The annuli partition the disc of the apothem: the masses sum to rho pi a^2 H.
+  double mass = 0.0;
+  for (const double m : p.mass) mass += m;
+  const double a = *spec.cylinder_radius;
+  CHECK(mass == Approx(1000.0 * std::numbers::pi * a * a * level).epsilon(1e-12));
+  // Inside, L0/2 clear of every wall (brute force), and the outer ring touches it.
+  check_clearance(tank, p, spacing);
+  // No gap: every wall vertex below the level has a particle within 0.9 L0, as
+  // at a flat wall (the corner of a lattice cell is sqrt(3)/2 L0 from its
+  // centre); the cubic lattice leaves more than L0 at this curved wall.
+  const auto largest_gap = [&](const Particles& particles) {
+    double largest = 0.0;
+    for (const auto& v : tank.vertices()) {
+      if (!(v.z() > 0.0 && v.z() < level) || std::hypot(v.x(), v.y()) < 0.99 * radius) continue;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const auto& x : particles.position) nearest = std::min(nearest, (x - v).norm());
+      largest = std::max(largest, nearest);
+    }
+    return largest;
+  };
+  CHECK(largest_gap(p) < 0.9 * spacing);
+  FillSpec cubic = spec;
+  cubic.cylinder_radius.reset();
+  CHECK(largest_gap(fill_tank(tank, cubic)) > spacing);
+  // Each particle's volume is near L0^3 (its share of its annulus).
+  for (const double m : p.mass) {
+    CHECK(m > 0.75 * 1000.0 * std::pow(spacing, 3));
+    CHECK(m < 1.25 * 1000.0 * std::pow(spacing, 3));
+  }
+  spec.dimension = 2;
+  CHECK_THROWS_AS(fill_tank(tank, spec), std::invalid_argument);
+}
+
 TEST_CASE("filling: a closed dome tank filled to the top keeps clear of roof, wall and bottom",
           "[geometry]") {
   const TriangleMesh tank = make_cylindrical_tank(1.0, 1.0, 32, 4, 3, DomeRoof{1.2, 4});
