@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Benchmarks; figures go to bench/ (JSON and a Markdown table).
-# Usage: scripts/bench.sh fluid|structure|coupling [--quick]
+# Usage: scripts/bench.sh fluid|structure|coupling|fsi [--quick]
 #   fluid: 2D dam break at L0 0.01 and 0.005 m, 3D tank >= 100k particles, 1 vs 2 ranks
 #          (--quick: a coarse dam break that runs in minutes on 2 cores)
 #   structure: the paper's tank mesh (cases/tank3d_dry, ~56k equations) on 1 and 2 ranks:
@@ -9,6 +9,9 @@
 #   coupling: the solver dummies with 10k and 100k interface vertices at 1:1 and 2:2 ranks,
 #          parallel staggered and implicit IQN-ILS: time per window, share of time in the coupling
 #          (--quick: 10k vertices, 1:1)
+#   fsi: the coupled pair on the elastic plate (aluminium, and ten times denser), explicit and
+#          implicit: share of wall time in the fluid, the structure, waiting for the partner and
+#          coupling work (--quick: the plate, implicit)
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 what=${1:-fluid}
@@ -19,5 +22,6 @@ case "$what" in
   fluid) /usr/bin/python3 scripts/bench/fluid_bench.py --solver build/bin/sph_solver --output bench "$@" ;;
   structure) /usr/bin/python3 scripts/bench/structure_bench.py --solver build/bin/fem_solver --output bench "$@" ;;
   coupling) /usr/bin/python3 scripts/bench/coupling_bench.py --dummy build/bin/solver_dummy --output bench "$@" ;;
-  *) echo "bench.sh: unknown benchmark '$what' (known: fluid, structure, coupling)" >&2; exit 2 ;;
+  fsi) /usr/bin/python3 scripts/bench/fsi_bench.py --output bench "$@" ;;
+  *) echo "bench.sh: unknown benchmark '$what' (known: fluid, structure, coupling, fsi)" >&2; exit 2 ;;
 esac

@@ -50,6 +50,15 @@ class CoupledRun:
         return " | ".join(said[:4]) if said else self.output.strip()[-500:]
 
 
+def report(failures, checked):
+    """Prints each failure and the count line the tests' logs end with; the exit status."""
+    for f in failures:
+        print("FAILED:", f)
+    if not failures:
+        print(f"{checked} passed, 0 failed")
+    return 1 if failures else 0
+
+
 def derived_case(case, folder, overrides=(), sections=None):
     """A copy of `case` in `folder` with whole sections replaced (`sections`:
     name -> mapping) and KEY=VALUE overrides (dotted keys, YAML values): for

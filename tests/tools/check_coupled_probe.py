@@ -17,7 +17,7 @@ import shutil
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts" / "post"))
-from coupled_run import run_coupled  # noqa: E402
+from coupled_run import report, run_coupled  # noqa: E402
 
 
 def settled_mean(run, side, name, column, after):
@@ -95,11 +95,7 @@ def main():
         if difference > args.agreement * abs(args.reference):
             failures.append(f"{label}: the probe differs from the first run's by {difference:.3e} "
                             f"(allowed {args.agreement:g} of the reference)")
-    for f in failures:
-        print("FAILED:", f)
-    if not failures:
-        print(f"{len(runs)} passed, 0 failed")
-    return 1 if failures else 0
+    return report(failures, len(runs))
 
 
 if __name__ == "__main__":

@@ -19,7 +19,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts" / "post"))
-from coupled_run import derived_case, run_coupled  # noqa: E402
+from coupled_run import derived_case, report, run_coupled  # noqa: E402
 
 
 def wavenumber(omega, depth, g=9.81):
@@ -95,11 +95,7 @@ def main():
     lost = run.fluid["fluid"].get("overflow_particles", 0) if run.fluid and "fluid" in run.fluid else 0
     if lost:
         failures.append(f"{lost} particles left the flume (none may cross the moving wall)")
-    for f in failures:
-        print("FAILED:", f)
-    if not failures:
-        print(f"{len(args.gauge)} passed, 0 failed")
-    return 1 if failures else 0
+    return report(failures, len(args.gauge))
 
 
 if __name__ == "__main__":
