@@ -1,6 +1,9 @@
 #!/usr/bin/python3
 """Validation: free linear sloshing in a rectangular tank (VALIDATION.md,
-"Rectangular tank, linear sloshing").
+"Rectangular tank, linear sloshing") or an upright cylinder ("Cylindrical
+tank": the first mode's T = 2 pi / sqrt(g xi / R tanh(xi H / R)), xi = 1.8412,
+scripts/post/tank_theory.py), after --after (the end of the excitation that
+set it sloshing; default a quarter period).
 
 Usage: check_sloshing_period.py --launcher "mpiexec -n 2" --probe wave_left
        [--base 0.5] [--tolerance 0.01] SPH_SOLVER CASE.yaml [--set k=v ...]
@@ -28,6 +31,9 @@ import numpy as np
 import yaml
 
 from fluid_run import probe, run_solver
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts" / "post"))
+from tank_theory import convective_period  # noqa: E402
 
 
 def crossings(t, eta, rising):
@@ -62,6 +68,7 @@ def main():
     parser.add_argument("--run", help="check an existing run folder instead of running the case")
     parser.add_argument("--probe", required=True, help="the wave_height probe (its point sets the base)")
     parser.add_argument("--tolerance", type=float, default=0.01)
+    parser.add_argument("--after", type=float, help="start of the free sloshing (s)")
     parser.add_argument("--set", action="append", default=[])
     parser.add_argument("solver", nargs="?")
     parser.add_argument("case", nargs="?")
@@ -74,17 +81,24 @@ def main():
         resolved = yaml.safe_load((folder / "case.resolved.yaml").read_text())
         fluid = resolved["fluid"]
         g, spacing, dim = fluid["gravity"], fluid["spacing"], fluid["dimension"]
-        width = fluid["geometry"]["width"]
+        cylinder = fluid["geometry"]["type"] == "cylindrical_tank"
         depth = math.ceil(fluid["fill"]["level"] / spacing - 1e-9) * spacing
-        mode = fluid["initial_velocity"]["mode"]
         record = next(r for r in fluid["probes"] if r["name"] == args.probe)
         base = record["position"][dim - 1]
         _, rows = probe(folder, args.probe)
-    k = mode * math.pi / width
-    omega = math.sqrt(g * k * math.tanh(k * depth))
-    expected = 2.0 * math.pi / omega
+        if cylinder:
+            radius = fluid["geometry"]["radius"]
+            expected = convective_period(radius, depth, g)
+            label = f"cylinder, R = {radius} m, H = {depth:.3f} m: first mode (xi = 1.8412) T = {expected:.4f} s"
+        else:
+            width = fluid["geometry"]["width"]
+            mode = fluid["initial_velocity"]["mode"]
+            k = mode * math.pi / width
+            expected = 2.0 * math.pi / math.sqrt(g * k * math.tanh(k * depth))
+            label = f"mode {mode}, L = {width} m, H = {depth:.3f} m: Faltinsen T = {expected:.4f} s"
     t, eta = rows[:, 0], rows[:, 1] - (depth - base)
-    keep = np.isfinite(eta) & (t >= 0.25 * expected)
+    start = args.after if args.after is not None else 0.25 * expected
+    keep = np.isfinite(eta) & (t >= start)
     t, eta = t[keep], eta[keep]
     periods = np.concatenate([np.diff(crossings(t, eta, True)), np.diff(crossings(t, eta, False))])
     if len(periods) < 2:
@@ -92,7 +106,7 @@ def main():
         return 1
     measured = periods.mean()
     error = measured / expected - 1.0
-    print(f"mode {mode}, L = {width} m, H = {depth:.3f} m: Faltinsen T = {expected:.4f} s")
+    print(label)
     print(f"zero crossings: {len(periods)} periods {np.round(periods, 4).tolist()}, mean {measured:.4f} s, "
           f"error {100 * error:+.2f} % (tolerance {100 * args.tolerance:g} %)")
     print(f"FFT peak (not asserted): {fft_period(t, eta):.4f} s")
