@@ -62,6 +62,19 @@ FluidModel read_model(const CaseConfig& config) {
   return m;
 }
 
+/// Target edge of generated walls: fluid.geometry.element_size, or 2 L0.
+double wall_edge(const CaseConfig& config, const FluidModel& model) {
+  if (config.has("fluid.geometry.element_size") && config.real("fluid.geometry.element_size") > 0.0)
+    return config.real("fluid.geometry.element_size");
+  return 2.0 * model.spacing;
+}
+
+/// Facets around a generated cylindrical tank.
+int cylinder_segments(const CaseConfig& config, const FluidModel& model) {
+  return std::max(12, static_cast<int>(std::ceil(2.0 * std::numbers::pi * config.real("fluid.geometry.radius") /
+                                                  wall_edge(config, model))));
+}
+
 TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
   if (!config.has("fluid.geometry.type"))
     throw config.error_at("fluid", "sph_solver needs fluid.geometry.type (the walls of the liquid)");
@@ -71,9 +84,7 @@ TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
   if (planar_type && !two_d) throw config.error_at("fluid.geometry.type", type + " is a 2D geometry (fluid.dimension 2)");
   if (type == "cylindrical_tank" && two_d)
     throw config.error_at("fluid.geometry.type", "cylindrical_tank is a 3D geometry (fluid.dimension 3)");
-  double edge = 2.0 * model.spacing;
-  if (config.has("fluid.geometry.element_size") && config.real("fluid.geometry.element_size") > 0.0)
-    edge = config.real("fluid.geometry.element_size");
+  const double edge = wall_edge(config, model);
   try {
     if (type == "rectangular_tank")
       return make_rectangular_tank_2d(config.real("fluid.geometry.width"), config.real("fluid.geometry.wall_height"),
@@ -92,7 +103,7 @@ TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
     if (type == "cylindrical_tank") {
       const double radius = config.real("fluid.geometry.radius");
       const double height = config.real("fluid.geometry.wall_height");
-      const int segments = std::max(12, static_cast<int>(std::ceil(2.0 * std::numbers::pi * radius / edge)));
+      const int segments = cylinder_segments(config, model);
       const int layers = std::max(1, static_cast<int>(std::ceil(height / edge)));
       const int rings = std::max(1, static_cast<int>(std::ceil(radius / edge)));
       std::optional<DomeRoof> roof;
@@ -172,6 +183,10 @@ FluidCase read_fluid_case(const CaseConfig& config) {
   fill.hydrostatic_pressure = config.boolean("fluid.fill.hydrostatic");
   fill.gravity = c.model.gravity;
   if (config.has("fluid.fill.region")) fill.region = box_from(config, "fluid.fill.region");
+  // Rings that follow the wall (filling.hpp), inside the apothem of its polygon.
+  if (config.text("fluid.geometry.type") == "cylindrical_tank")
+    fill.cylinder_radius =
+        config.real("fluid.geometry.radius") * std::cos(std::numbers::pi / cylinder_segments(config, c.model));
   try {
     c.particles = fill_tank(c.walls, fill);
   } catch (const std::invalid_argument& e) {
