@@ -23,7 +23,7 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
       participant_(coupling::Side::structure, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
       comm_(context.comm),
-      hold_(context.config.text("coupling.structure_load") == "window_average") {
+      hold_(coupling::read_coupling_settings(context.config).hold_window_average) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_, &rank);
   MPI_Comm_size(comm_, &size);

@@ -60,8 +60,7 @@ ShellMesh sphere_patch(const SpherePatch& spec) {
 
 ShellMesh plate_patch(const PlatePatch& spec) {
   const Eigen::Vector3d normal = spec.side_u.cross(spec.side_v);
-  if (!(spec.corner.allFinite() && normal.allFinite() &&
-        normal.norm() > 1e-12 * spec.side_u.norm() * spec.side_v.norm() && normal.norm() > 0.0))
+  if (!(spec.corner.allFinite() && normal.allFinite() && normal.norm() > 1e-12 * spec.side_u.norm() * spec.side_v.norm()))
     throw std::invalid_argument("a plate needs two sides that are not parallel and not zero");
   PatchSpec patch;
   patch.divisions_u = spec.divisions_u;

@@ -152,8 +152,8 @@ void FluidSolver::redistribute() {
 }
 
 std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vector3d& ground_acceleration) {
-  remove_escaped();
-  redistribute();
+  // The particles stay as they are (balanced and migrated since construction
+  // or the last step); only the halo is built, as every step rebuilds it.
   halo_.build(comm_, decomposition_, particles_.position, kernel_.support_radius() + 0.5 * model_.spacing);
   const int owned = particles_.count();
   const auto mass = with_ghosts(halo_, particles_.mass);
@@ -163,12 +163,10 @@ std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vecto
   const Configuration now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
   const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
   const auto density = with_ghosts(halo_, kernel_density(n, mass));
-  // The walls' pressure gradient rho (v* - v_w) . n / dt with v* = v + dt F:
-  // any dt gives rho F . n for a liquid at rest on resting walls.
+  // The walls' Neumann pressure gradient rho (v* - v_w) . n / dt of the liquid
+  // at rest, v* = dt F on resting walls: rho F . n whatever dt.
   const double dt = 1.0;
-  std::vector<Eigen::Vector3d> predicted(at(owned));
-  const Eigen::Vector3d body_force = model_.body_force(ground_acceleration);
-  for (int i = 0; i < owned; ++i) predicted[at(i)] = particles_.velocity[at(i)] + dt * body_force;
+  const std::vector<Eigen::Vector3d> predicted(at(owned), dt * model_.body_force(ground_acceleration));
   std::vector<Eigen::Vector3d> forces(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
   // Only the walls' reactions are wanted, not the particles' accelerations.
   static_cast<void>(viscous_acceleration(n, mass, density, velocity, forces));

@@ -80,7 +80,8 @@ class FluidSolver {
   /// vertex in the present state, with the particles' present pressures and
   /// under the body force of ground acceleration a_g (the walls' Neumann
   /// pressure gradient rho (g - a_g) . n for a liquid at rest): the forces a
-  /// coupled structure carries at t = 0. The state is not changed.
+  /// coupled structure carries at t = 0 (the viscous part from the particles'
+  /// present velocities). The particles are not changed.
   [[nodiscard]] std::vector<Eigen::Vector3d> present_wall_forces(const Eigen::Vector3d& ground_acceleration);
 
   /// Replaces the walls before the first step (a coupled run's wall, whose

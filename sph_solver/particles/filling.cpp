@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -114,12 +115,12 @@ FilledPoints ring_points(const TriangleMesh& mesh, const FillSpec& spec) {
     const double z = floor + (k + 0.5) * h;
     for (int m = 0; radius - (m + 0.5) * h > 0.0; ++m) {
       const double r = radius - (m + 0.5) * h;
-      const int n = std::max(1, static_cast<int>(std::lround(2.0 * std::acos(-1.0) * r / h)));
+      const int n = std::max(1, static_cast<int>(std::lround(2.0 * std::numbers::pi * r / h)));
       const bool innermost = r - h <= 0.0;
-      const double area = innermost ? std::acos(-1.0) * (r + 0.5 * h) * (r + 0.5 * h) : 2.0 * std::acos(-1.0) * r * h;
+      const double area = innermost ? std::numbers::pi * (r + 0.5 * h) * (r + 0.5 * h) : 2.0 * std::numbers::pi * r * h;
       const double turn = (m % 2 == 0 ? 0.0 : 0.5) + (k % 2 == 0 ? 0.0 : 0.25);
       for (int i = 0; i < n; ++i) {
-        const double phi = 2.0 * std::acos(-1.0) * (i + turn) / n;
+        const double phi = 2.0 * std::numbers::pi * (i + turn) / n;
         const Eigen::Vector3d x(n == 1 ? 0.0 : r * std::cos(phi), n == 1 ? 0.0 : r * std::sin(phi), z);
         if (!passes(index, mesh, spec, x)) continue;
         out.points.push_back(x);
