@@ -67,9 +67,13 @@ def derived_case(case, folder, overrides=(), sections=None):
     them). A case that reads input files is refused (its copy would lose
     their relative paths)."""
     import yaml
-    text = pathlib.Path(case).read_text()
-    config = yaml.safe_load(text)
-    if "file" in text:
+    config = yaml.safe_load(pathlib.Path(case).read_text())
+
+    def names_a_file(node):
+        if isinstance(node, dict):
+            return any(str(k).endswith("file") or names_a_file(v) for k, v in node.items())
+        return isinstance(node, list) and any(names_a_file(v) for v in node)
+    if names_a_file(config) or config.get("excitation", {}).get("type") == "knet":
         raise ValueError(f"{case}: a case that reads input files cannot be copied here")
     config.update(sections or {})
     for item in overrides:
