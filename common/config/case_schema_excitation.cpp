@@ -20,7 +20,7 @@ std::vector<KeySpec> excitation_keys() {
       real_key("excitation.pre_event_duration",
                "Length of the record's start over which the mean (baseline) is taken and removed.")
           .unit_is("s").default_is("5").above(0).only_when("excitation.type", {"knet"}),
-      input_path_key("excitation.csv_file", "CSV file with columns time_s, ax, ay, az (m/s^2).")
+      input_path_key("excitation.csv_file", "CSV file with columns time_s, ax, ay, az (m/s^2), sampled uniformly.")
           .is_required().only_when("excitation.type", {"csv"}),
       real_vector_key("excitation.window", "Part [start, end] of the record to use, in record time before scaling.")
           .unit_is("s").with_length(2).at_least(0).only_when("excitation.type", records),

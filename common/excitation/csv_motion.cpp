@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/config/config_error.hpp"
+#include "common/io/number_text.hpp"
 #include "common/io/text_fields.hpp"
 
 namespace tankfsi {
@@ -76,6 +77,17 @@ SampledGroundMotion read_motion_csv(const std::filesystem::path& file) {
     }
     if (!times.empty() && values[0] <= times.back())
       throw fail(line, "time " + std::string(fields[0]) + " s is not after the previous sample's time");
+    // Records are sampled uniformly (the response spectra of the outputs assume
+    // it); a longer interval is a gap, a shorter one a wrong time. 0.1 % allows
+    // for times written with few digits.
+    if (times.size() >= 2) {
+      const double first = times[1] - times[0];
+      const double interval = values[0] - times.back();
+      if (std::abs(interval - first) > 1e-3 * first)
+        throw fail(line, "irregular sampling: " + number_text(interval) + " s since the previous sample, " +
+                             number_text(first) + " s between the first two (a gap or a wrong time): a "
+                             "ground-motion record must be sampled uniformly");
+    }
     times.push_back(values[0]);
     accelerations.emplace_back(values[1], values[2], values[3]);
   }

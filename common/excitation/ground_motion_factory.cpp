@@ -3,24 +3,20 @@
 #include <algorithm>
 #include <array>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/excitation/csv_motion.hpp"
 #include "common/excitation/knet_record.hpp"
 #include "common/excitation/synthetic_motion.hpp"
+#include "common/io/number_text.hpp"
 
 namespace tankfsi {
 
 namespace {
 
 // Numbers in messages as people write them ("10 s", "200 Hz"), not "10.000000".
-std::string with_unit(double value, const char* unit) {
-  std::ostringstream text;
-  text << value << ' ' << unit;
-  return text.str();
-}
+std::string with_unit(double value, const char* unit) { return number_text(value) + " " + unit; }
 std::string seconds(double t) { return with_unit(t, "s"); }
 
 // Window (knet, csv only) and scales (all sampled kinds) from the case.

@@ -27,6 +27,7 @@ constexpr const char* key_station = "Station Code";
 constexpr const char* key_frequency = "Sampling Freq(Hz)";
 constexpr const char* key_direction = "Dir.";
 constexpr const char* key_scale = "Scale Factor";
+constexpr const char* key_duration = "Duration Time(s)";
 
 std::string trimmed(std::string_view text) {
   const auto first = text.find_first_not_of(" \t\r");
@@ -67,6 +68,7 @@ class KnetReader {
     record.header.sampling_frequency = sampling_frequency();
     record.header.scale_factor = scale_factor();
     const auto counts = read_counts();
+    require_duration(counts.size(), record.header.sampling_frequency);
     record.acceleration = accelerations(counts, record.header, pre_event_duration);
     return record;
   }
@@ -83,7 +85,7 @@ class KnetReader {
         fail(line_, "the header ends after " + std::to_string(line_) + " lines; a K-NET record has " +
                         std::to_string(header_line_count));
       line_ = n;
-      for (const char* key : {key_station, key_frequency, key_direction, key_scale}) {
+      for (const char* key : {key_station, key_frequency, key_direction, key_scale, key_duration}) {
         if (text.rfind(key, 0) == 0) header_[key] = HeaderValue{trimmed(text.substr(std::strlen(key))), n};
       }
     }
@@ -144,6 +146,23 @@ class KnetReader {
     if (counts.empty())
       fail(line_, "no samples after the " + std::to_string(header_line_count) + " header lines");
     return counts;
+  }
+
+  // A record cut short (an interrupted download) holds fewer samples than its
+  // header's Duration Time(s) announces. The announced count is allowed to
+  // differ by up to one second of samples: records of one station differ by a
+  // few samples in length, and the duration is often written in whole seconds.
+  void require_duration(std::size_t samples, double frequency) const {
+    const auto it = header_.find(key_duration);
+    if (it == header_.end()) return;  // not needed to read the record
+    const auto duration = whole_number<double>(it->second.text);
+    if (!duration || *duration <= 0.0)
+      fail(it->second.line, "malformed Duration Time(s) '" + it->second.text + "': expected a positive number of seconds");
+    const double announced = *duration * frequency;
+    if (static_cast<double>(samples) < announced - frequency)
+      fail(line_, "truncated record: the header announces " + it->second.text + " s at " + trimmed(header_.at(key_frequency).text) +
+                      " (" + std::to_string(std::llround(announced)) + " samples), the file holds " +
+                      std::to_string(samples));
   }
 
   // The pre-event mean is taken in counts: the integer sum is exact, so the

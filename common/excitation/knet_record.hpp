@@ -11,7 +11,8 @@
 //   Last Correction   2003/09/26 04:50:11
 //   Memo.
 // (and the epicentre and station coordinates), then integer counts, 8 a line.
-// Acceleration in gal = count * 7845 / 8223790.
+// Acceleration in gal = count * 7845 / 8223790. A record holding more than one
+// second of samples fewer than its Duration Time announces is refused as truncated.
 #include <filesystem>
 #include <string>
 #include <vector>

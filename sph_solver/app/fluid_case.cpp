@@ -6,11 +6,14 @@
 #include <stdexcept>
 
 #include "common/config/config_error.hpp"
+#include "common/io/number_text.hpp"
+#include "sph_solver/isph/time_step_control.hpp"
 #include "sph_solver/particles/filling.hpp"
 #include "sph_solver/particles/standing_wave.hpp"
 #include "sph_solver/walls/gmsh_reader.hpp"
 #include "sph_solver/walls/stl_reader.hpp"
 #include "sph_solver/walls/tank_meshes.hpp"
+#include "sph_solver/walls/wall_mesh_check.hpp"
 
 namespace tankfsi::sph {
 namespace {
@@ -125,6 +128,47 @@ TriangleMesh read_walls(const CaseConfig& config, const FluidModel& model) {
   }
 }
 
+/// The walls can hold the liquid up to its level (wall_mesh_check.hpp), and the
+/// level lies below their top: a tank filled to the roof has no free surface.
+void check_walls(const CaseConfig& config, const FluidModel& model, const TriangleMesh& walls) {
+  const double level = config.real("fluid.fill.level");
+  const int up = model.dimension == 2 ? 1 : 2;
+  const double top = walls.bounding_box().max()[up];
+  const std::string type = config.text("fluid.geometry.type");
+  if (type == "cylindrical_tank" && config.real("fluid.geometry.dome_radius") > 0.0 &&
+      level > config.real("fluid.geometry.wall_height"))
+    throw config.error_at("fluid.fill.level", "the liquid would reach into the roof: the level " +
+                                                  number_text(level) + " m is above the wall height " +
+                                                  number_text(config.real("fluid.geometry.wall_height")) + " m");
+  if (level >= top)
+    throw config.error_at("fluid.fill.level", "the level " + number_text(level) +
+                                                  " m is not below the top of the walls (" + number_text(top) +
+                                                  " m): the liquid needs a free surface inside the tank");
+  const std::string problem = wall_mesh_problem(walls, {.dimension = model.dimension, .fill_level = level});
+  if (problem.empty()) return;
+  if (type == "stl" || type == "gmsh")
+    throw config.error_at("fluid.geometry.file", config.path("fluid.geometry.file").string() + ": " + problem);
+  throw config.error_at("fluid.geometry.type", "the generated " + type + " walls fail a check (" + problem +
+                                                   "): report this with the case file");
+}
+
+/// A fixed step must meet the stability limits of the liquid at rest (gravity,
+/// hydrostatic pressure of the full depth; time_step_control.hpp) before any
+/// motion adds to them: a step that fails them fails at the first step.
+void check_fixed_step_at_rest(const CaseConfig& config, const FluidCase& c) {
+  const int up = c.model.dimension == 2 ? 1 : 2;
+  const double depth = std::max(0.0, config.real("fluid.fill.level") - c.walls.bounding_box().min()[up]);
+  const double pressure = c.model.density * c.model.gravity * depth;
+  const auto limits = time_step_limits(c.model, 1.0, c.fixed_time_step, 0.0, c.model.gravity, pressure);
+  if (c.fixed_time_step > limits.smallest() * (1.0 + 1e-12))
+    throw config.error_at("fluid.time_step.value",
+                          "the fixed time step " + number_text(c.fixed_time_step) + " s exceeds the " +
+                              limits.limiting() + " stability limit " + number_text(limits.smallest()) +
+                              " s of the liquid at rest (|g| = " + number_text(c.model.gravity) +
+                              " m/s^2, hydrostatic pressure " + number_text(pressure) +
+                              " Pa): use a smaller step or fluid.time_step.mode adaptive");
+}
+
 std::vector<ProbeSpec> read_probes(const CaseConfig& config) {
   std::vector<ProbeSpec> probes;
   for (const ConfigView& record : config.records("fluid.probes")) {
@@ -175,6 +219,7 @@ FluidCase read_fluid_case(const CaseConfig& config) {
   c.walls = read_walls(config, c.model);
   if (!config.has("fluid.fill.level"))
     throw config.error_at("fluid.fill", "sph_solver needs fluid.fill.level (the height of the still liquid)");
+  check_walls(config, c.model, c.walls);
   FillSpec fill;
   fill.spacing = c.model.spacing;
   fill.density = c.model.density;
@@ -210,6 +255,7 @@ FluidCase read_fluid_case(const CaseConfig& config) {
     c.max_time_step = config.real("fluid.time_step.max");
   } else {
     c.fixed_time_step = config.real("fluid.time_step.value");
+    check_fixed_step_at_rest(config, c);
   }
   c.field_interval = config.real("output.field_interval");
   c.probe_interval = config.real("output.probe_interval");

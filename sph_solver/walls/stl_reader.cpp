@@ -130,7 +130,7 @@ class AsciiTokens {
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size())
       throw error(std::string("expected ") + what + ", found '" + text + "'");
-    if (!std::isfinite(value)) throw error(std::string("non-finite ") + what + " '" + text + "'");
+    if (!std::isfinite(value)) throw error(std::string("expected ") + what + ", found the non-finite '" + text + "'");
     ++next_;
     return value;
   }

@@ -146,7 +146,7 @@ TEST_CASE("STL: broken files raise ConfigError with their location", "[wall_geom
   }
   SECTION("NaN and non-numeric ASCII coordinates: file and line") {
     const fs::path nan = write_text(folder, "nan_ascii.stl", with_line(ascii, 4, "      vertex 0 nan 1"));
-    CHECK_THROWS_WITH(read_stl(nan), Contains(nan.string() + ":4:") && Contains("non-finite a vertex coordinate"));
+    CHECK_THROWS_WITH(read_stl(nan), Contains(nan.string() + ":4:") && Contains("expected a vertex coordinate, found the non-finite 'nan'"));
     const fs::path word = write_text(folder, "word.stl", with_line(ascii, 5, "      vertex 0 1 one"));
     CHECK_THROWS_WITH(read_stl(word), Contains(word.string() + ":5:") && Contains("found 'one'"));
   }
