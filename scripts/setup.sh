@@ -13,6 +13,7 @@ packages=(
   libhdf5-openmpi-dev hdf5-tools # parallel HDF5 (MPI-IO)
   libmetis-dev
   catch2 libyaml-cpp-dev nlohmann-json3-dev
+  clang libclang-rt-14-dev       # the fuzz preset: clang and its libFuzzer / sanitizer runtimes
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
 )
 

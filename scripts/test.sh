@@ -1,11 +1,30 @@
 #!/usr/bin/env bash
-# Sets up the machine, builds, and runs every test CI runs (labels unit,
-# integration, validation). Usage: scripts/test.sh [release|debug|asan] [ctest args...]
+# Sets up the machine, builds, and runs the tests. What CI runs (.ci/run) is the
+# default, "all":
+#   release  optimised build, labels unit, integration, validation
+#   asan     AddressSanitizer + UndefinedBehaviorSanitizer build, labels unit, integration
+#   fuzz     clang libFuzzer targets of the file readers, 20 s each (label fuzz)
+# Usage: scripts/test.sh [all|release|debug|asan|fuzz] [ctest args...]
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
-preset=${1:-release}
+choice=${1:-all}
 shift || true
+labels_of() {
+  case $1 in
+    release|debug) echo 'unit|integration|validation' ;;
+    asan) echo 'unit|integration' ;;
+    fuzz) echo 'fuzz' ;;
+    *) echo "scripts/test.sh: unknown preset '$1' (all, release, debug, asan, fuzz)" >&2; exit 2 ;;
+  esac
+}
+presets=("$choice")
+[[ "$choice" == all ]] && presets=(release asan fuzz)
+for preset in "${presets[@]}"; do labels_of "$preset" >/dev/null; done
 bash "$repo_root/scripts/setup.sh"
-bash "$repo_root/scripts/build.sh" "$preset"
 cd "$repo_root"
-ctest --preset "$preset" -j "$jobs" -L 'unit|integration|validation' "$@"
+for preset in "${presets[@]}"; do
+  echo "== $preset: build"
+  bash "$repo_root/scripts/build.sh" "$preset"
+  echo "== $preset: tests ($(labels_of "$preset"))"
+  ctest --preset "$preset" -j "$jobs" -L "$(labels_of "$preset")" "$@"
+done

@@ -41,7 +41,6 @@ WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& k
       table_(kernel, model.spacing),
       corner_table_(kernel, model.spacing),
       support_radius_(kernel.support_radius()),
-      dimension_(model.dimension),
       velocities_(mesh_->vertex_count(), Eigen::Vector3d::Zero()) {
   update_curvature();
 }

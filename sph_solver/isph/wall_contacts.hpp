@@ -73,7 +73,6 @@ class WallModel {
   WallKernelTable table_;
   CornerKernelTable corner_table_;
   double support_radius_;
-  int dimension_;
   std::vector<double> curvature_;
   std::vector<Eigen::Vector3d> velocities_;
 };
