@@ -23,7 +23,12 @@ StageTimers::Scope StageTimers::time(const std::string& stage) {
     if (stages_[i].name == stage) return Scope(*this, i);
   Stage added;
   added.name = stage;
-  if (PetscLogStageRegister(stage.c_str(), &added.petsc_stage) != 0)
+  // PETSc's stages are process-wide and refuse a name twice: a second set of
+  // timers (a second solver in one process) shares the stage of that name.
+  PetscLogStage existing = -1;
+  if (PetscLogStageGetId(stage.c_str(), &existing) == 0 && existing >= 0)
+    added.petsc_stage = existing;
+  else if (PetscLogStageRegister(stage.c_str(), &added.petsc_stage) != 0)
     throw std::runtime_error("PETSc could not register log stage " + stage);
   stages_.push_back(added);
   return Scope(*this, stages_.size() - 1);

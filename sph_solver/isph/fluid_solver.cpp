@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/geometry/segment_triangle.hpp"
 #include "sph_solver/isph/free_surface.hpp"
 #include "sph_solver/isph/particle_terms.hpp"
 #include "sph_solver/neighbours/cell_list.hpp"
@@ -67,6 +68,50 @@ bool near_free_surface(const Neighbourhood& n, const std::vector<unsigned char>&
   if (free_surface[at(i)] != 0) return true;
   const auto neighbours = n.neighbours.neighbours_of(i);
   return std::any_of(neighbours.begin(), neighbours.end(), [&](int j) { return free_surface[at(j)] != 0; });
+}
+
+/// The particle a failed check names, the same on every rank: of all ranks'
+/// offenders, the one with the lowest id; `count` offenders in all.
+struct Offender {
+  long long count = 0;
+  std::int64_t id = -1;
+  Eigen::Vector3d from = Eigen::Vector3d::Zero();  ///< position at the step's start
+  Eigen::Vector3d to = Eigen::Vector3d::Zero();    ///< position at its end
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  int triangle = -1;
+};
+
+/// Collective: `local` is this rank's first offender (id -1: none), `count`
+/// how many this rank has.
+Offender first_offender(MPI_Comm comm, const Offender& local, long long count) {
+  Offender all;
+  all.count = global_sum(comm, count);
+  if (all.count == 0) return all;
+  std::int64_t lowest = local.id >= 0 ? local.id : std::numeric_limits<std::int64_t>::max();
+  MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_INT64_T, MPI_MIN, comm);
+  // The owner of the lowest id fills the buffer, the others add zeros.
+  std::array<double, 10> values{};
+  if (local.id == lowest) {
+    for (int k = 0; k < 3; ++k) {
+      values[at(k)] = local.from[k];
+      values[at(3 + k)] = local.to[k];
+      values[at(6 + k)] = local.velocity[k];
+    }
+    values[9] = local.triangle;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), 10, MPI_DOUBLE, MPI_SUM, comm);
+  all.id = lowest;
+  all.from = Eigen::Vector3d(values[0], values[1], values[2]);
+  all.to = Eigen::Vector3d(values[3], values[4], values[5]);
+  all.velocity = Eigen::Vector3d(values[6], values[7], values[8]);
+  all.triangle = static_cast<int>(values[9]);
+  return all;
+}
+
+std::string point_text(const Eigen::Vector3d& x) {
+  std::ostringstream text;
+  text << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+  return text.str();
 }
 
 }  // namespace
@@ -183,6 +228,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   // The kernel-sum density of the initial lattice (1 - 6e-5 of rho0 for the quintic
   // spline at h = 1.2 L0): what the discretisation reads as rho0.
   const double rest_density = rho0 * walls_.table().lattice_share();
+  check_finite(t);  // what the step starts from (restored, moved, or the last step's result)
   const double speed_before = max_speed();
   {
     auto scope = stage("neighbours");
@@ -194,6 +240,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     halo_.build(comm_, decomposition_, particles_.position, kernel_.support_radius() + margin);
   }
   const int owned = particles_.count();
+  const std::vector<Eigen::Vector3d> start = particles_.position;  // for the wall-crossing check
   std::fill(wall_force_.begin(), wall_force_.end(), Eigen::Vector3d::Zero());
   std::vector<std::int64_t> global_index(at(owned));
   {
@@ -280,9 +327,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
       report.ppe_iterations = solved.iterations;
       report.ppe_residual = solved.residual_norm;
     } catch (const std::runtime_error& e) {
-      std::ostringstream message;
-      message << "step " << steps_ + 1 << " at t = " << t << " s: " << e.what();
-      throw std::runtime_error(message.str());
+      throw std::runtime_error(step_prefix(t) + e.what());
     }
   }
 
@@ -321,17 +366,68 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     particles_.velocity = std::move(v_new);
   }
   free_surface_flags_.assign(free_surface.begin(), free_surface.begin() + owned);
-  ++steps_;
   report.removed_particles = removed_this_step_;
   report.particles = particles_after_removal_;
   report.max_speed = max_speed();
   report.max_pressure = max_pressure();
-  if (!std::isfinite(report.max_speed)) {
-    std::ostringstream message;
-    message << "step " << steps_ << " at t = " << t << " s: a particle velocity is not finite";
-    throw std::runtime_error(message.str());
+  {
+    auto scope = stage("checks");
+    check_finite(t);
+    check_crossings(start, t);
   }
+  ++steps_;
   return report;
+}
+
+std::string FluidSolver::step_prefix(double t) const {
+  std::ostringstream text;
+  text << "step " << steps_ + 1 << " at t = " << t << " s: ";
+  return text.str();
+}
+
+void FluidSolver::check_finite(double t) const {
+  Offender local;
+  long long count = 0;
+  for (int i = 0; i < particles_.count(); ++i) {
+    const bool finite = particles_.position[at(i)].allFinite() && particles_.velocity[at(i)].allFinite() &&
+                        std::isfinite(particles_.pressure[at(i)]);
+    if (finite) continue;
+    if (count++ == 0) local = {0, particles_.id[at(i)], particles_.position[at(i)], particles_.position[at(i)], particles_.velocity[at(i)], -1};
+  }
+  if (const Offender bad = first_offender(comm_, local, count); bad.count > 0)
+    throw std::runtime_error(step_prefix(t) + std::to_string(bad.count) +
+                             " particle(s) with a non-finite position, velocity or pressure; the first, id " +
+                             std::to_string(bad.id) + ", at " + point_text(bad.to) + " with velocity " +
+                             point_text(bad.velocity));
+}
+
+void FluidSolver::check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const {
+  // A path through a wall (the walls at the step's end): the liquid has left
+  // the tank where no overflow can happen. Candidates are the triangles within
+  // half the path's length of its midpoint (any triangle the path meets is).
+  Offender local;
+  long long count = 0;
+  const TriangleMesh& mesh = walls_.mesh();
+  for (int i = 0; i < particles_.count(); ++i) {
+    const Eigen::Vector3d& from = start[at(i)];
+    const Eigen::Vector3d& to = particles_.position[at(i)];
+    const double half = 0.5 * (to - from).norm();
+    if (!(half > 0.0)) continue;
+    int crossed = -1;
+    walls_.index().within(0.5 * (from + to), half * (1.0 + 1e-12), [&](const WallHit& hit) {
+      if (crossed < 0 && segment_meets_triangle(from, to, mesh.corner(hit.triangle, 0), mesh.corner(hit.triangle, 1),
+                                                mesh.corner(hit.triangle, 2), 0.0))
+        crossed = hit.triangle;
+    });
+    if (crossed < 0) continue;
+    if (count++ == 0) local = {0, particles_.id[at(i)], from, to, particles_.velocity[at(i)], crossed};
+  }
+  if (const Offender bad = first_offender(comm_, local, count); bad.count > 0)
+    throw std::runtime_error(step_prefix(t) + std::to_string(bad.count) + " particle(s) crossed a wall; the first, id " +
+                             std::to_string(bad.id) + ", went from " + point_text(bad.from) + " to " +
+                             point_text(bad.to) + " through wall triangle " + std::to_string(bad.triangle) +
+                             " (speed " + std::to_string(bad.velocity.norm()) +
+                             " m/s): the step is too long for the liquid's speed or the wall's motion");
 }
 
 }  // namespace tankfsi::sph

@@ -73,7 +73,8 @@ class FluidSolver {
 
   /// Advances by dt from time t under ground acceleration a_g (the body force is
   /// F = g - a_g at t + dt/2). Collective. Throws std::runtime_error if the PPE
-  /// fails or dt breaches the motion margin of the halo.
+  /// fails, dt breaches the motion margin of the halo, or the step leaves a
+  /// non-finite field or a particle that went through a wall.
   StepReport step(double t, double dt, const Eigen::Vector3d& ground_acceleration);
 
   /// Collective: this rank's share of the force of the fluid on each wall
@@ -144,6 +145,15 @@ class FluidSolver {
 
  private:
   void remove_escaped();
+  /// "step N at t = T s: " for the step starting at t.
+  [[nodiscard]] std::string step_prefix(double t) const;
+  /// Collective: throws std::runtime_error naming the step, the time and the
+  /// first particle (lowest id) when a position, velocity or pressure is not finite.
+  void check_finite(double t) const;
+  /// Collective, after a step: the same when a particle's path from `start` (its
+  /// position at the step's start) to its position now went through a wall
+  /// (the walls as they are at the step's end).
+  void check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const;
   void redistribute();
   StageTimers::Scope stage(const std::string& name);
 

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "common/geometry/segment_triangle.hpp"
 #include "sph_solver/walls/mesh_topology.hpp"
 #include "sph_solver/walls/triangle_index.hpp"
 
@@ -185,14 +186,8 @@ class IntersectionTest {
 
   /// A segment through the plane of t at a point of t (its border included).
   [[nodiscard]] bool segment_hits(const Segment& segment, int t) const {
-    const double dp = plane_distance(t, segment.first);
-    const double dq = plane_distance(t, segment.second);
-    if ((dp > tolerance_ && dq > tolerance_) || (dp < -tolerance_ && dq < -tolerance_)) return false;
-    const double denominator = dp - dq;
-    const double u = std::abs(denominator) > 0.0 ? std::clamp(dp / denominator, 0.0, 1.0) : 0.0;
-    const Eigen::Vector3d x = segment.first + u * (segment.second - segment.first);
-    const auto axes = plane_axes(mesh_.face_normals()[static_cast<std::size_t>(t)]);
-    return inside_flat(flat(t, axes), project(x, axes), -tolerance_);
+    return segment_meets_triangle(segment.first, segment.second, mesh_.corner(t, 0), mesh_.corner(t, 1),
+                                  mesh_.corner(t, 2), tolerance_);
   }
 
   /// Coplanar, no vertex shared: an edge of one crosses an edge of the other, or
