@@ -100,6 +100,7 @@ class Outputs {
     particles_.write_particles(t, ParticleSnapshot{particles.id, positions,
                                                    {NamedField{"velocity", 3, velocities},
                                                     NamedField{"pressure", 1, particles.pressure},
+                                                    NamedField{"mass", 1, particles.mass},
                                                     NamedField{"density", 1, density},
                                                     NamedField{"free_surface", 1, free_surface}}});
     write_walls(t);
