@@ -20,7 +20,8 @@ namespace tankfsi {
 namespace {
 
 constexpr int header_line_count = 17;
-constexpr double gal_to_m_per_s2 = 100.0;  // 1 gal = 1 cm/s^2 = 0.01 m/s^2: divide by 100
+constexpr double gal_to_m_per_s2 = 100.0;
+constexpr long long max_count = 1LL << 31;  // 1 gal = 1 cm/s^2 = 0.01 m/s^2: divide by 100
 
 // Header keys this reader needs; the others (epicentre, times, memo) are ignored.
 constexpr const char* key_station = "Station Code";
@@ -140,6 +141,10 @@ class KnetReader {
       while (tokens >> token) {
         const auto count = whole_number<long long>(token);
         if (!count) fail(line_, "count '" + token + "' is not an integer");
+        // Loggers record 24-bit counts; 2^31 leaves room for any other and keeps
+        // the pre-event sum of up to 2^31 samples inside a long long.
+        if (*count > max_count || *count < -max_count)
+          fail(line_, "count '" + token + "' is beyond any logger's range (|count| <= 2^31)");
         counts.push_back(*count);
       }
     }

@@ -46,3 +46,5 @@ knet("nan_count.NS", corrupt=lambda c: c[:13] + ["NaN"] + c[14:])
 knet("truncated_data.NS", duration="60")
 knet("bad_scale.NS", scale="7845/8223790")
 knet("bad_frequency.NS", frequency="fastHz")
+# Found by fuzz_knet_record: counts this large overflowed the pre-event sum.
+knet("huge_count.NS", corrupt=lambda c: c[:5] + ["6561111111111512541", "8375319363688624582"] + c[7:])
