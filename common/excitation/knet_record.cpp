@@ -20,8 +20,8 @@ namespace tankfsi {
 namespace {
 
 constexpr int header_line_count = 17;
-constexpr double gal_to_m_per_s2 = 100.0;
-constexpr long long max_count = 1LL << 31;  // 1 gal = 1 cm/s^2 = 0.01 m/s^2: divide by 100
+constexpr double gal_to_m_per_s2 = 100.0;  // 1 gal = 1 cm/s^2 = 0.01 m/s^2: divide by 100
+constexpr long long max_count = 1LL << 31;  // the largest |count| read (read_counts)
 
 // Header keys this reader needs; the others (epicentre, times, memo) are ignored.
 constexpr const char* key_station = "Station Code";
