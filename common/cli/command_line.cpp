@@ -52,6 +52,13 @@ CommandLine parse_command_line(int argc, const char* const* argv, const ProgramI
     } else if (auto output = value_of("--output")) {
       if (output->empty()) throw ConfigError(command_line_origin, "", "--output needs a folder");
       cli.output_dir = *output;
+    } else if (argument == "--restart") {
+      // The value is optional: a following case file or option is not one.
+      const bool valued = i + 1 < argc && argv[i + 1][0] != '-' && !is_case_file(argv[i + 1]);
+      cli.restart = valued ? std::string(argv[++i]) : std::string("latest");
+    } else if (auto restart = value_of("--restart")) {
+      if (restart->empty()) throw ConfigError(command_line_origin, "", "--restart= needs latest, a number or a file");
+      cli.restart = *restart;
     } else if (argument.starts_with("--")) {
       const auto known = std::find_if(program.flags.begin(), program.flags.end(),
                                       [&](const std::string& f) { return flag_name(f) == argument; });
@@ -83,7 +90,11 @@ std::string help_text(const ProgramInfo& program, const Schema& schema) {
       << "Usage: " << program.name << " [options] CASE.yaml [PETSc options]\n\n"
       << "Options:\n"
       << "  --set KEY=VALUE   override a case key, e.g. --set fluid.spacing=0.02 (repeatable)\n"
-      << "  --output DIR      run folder, overrides output.dir\n";
+      << "  --output DIR      run folder, overrides output.dir\n"
+      << "  --restart [latest|N|FILE]\n"
+      << "                    continue the run in the run folder from its latest checkpoint (default),\n"
+      << "                    checkpoint N, or a checkpoint file; the case may change only title,\n"
+      << "                    output and end_time\n";
   for (const auto& flag : program.flags) out << "  " << flag << "\n";
   out << "  --help            this text\n"
       << "  --version         version and git commit\n"

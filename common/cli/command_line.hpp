@@ -4,6 +4,7 @@
 //   PROGRAM [options] CASE.yaml [PETSc options]
 //     --set KEY=VALUE   override a case key (validated like the file; repeatable)
 //     --output DIR      run folder (overrides output.dir)
+//     --restart [latest|N|FILE]  continue the run in the run folder from a checkpoint
 //     --help            usage and every case key with unit and default
 //     --version
 // Single-dash options (-log_view, -ppe_ksp_type cg, ...) and their values go to
@@ -30,6 +31,8 @@ struct CommandLine {
   std::filesystem::path case_file;
   std::vector<Override> overrides;
   std::optional<std::filesystem::path> output_dir;
+  /// --restart: "latest", a checkpoint number or a checkpoint file.
+  std::optional<std::string> restart;
   bool help = false;
   bool version = false;
   std::vector<std::string> program_flags;    ///< flags from ProgramInfo::flags that were given

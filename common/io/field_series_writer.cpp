@@ -116,9 +116,10 @@ std::filesystem::path checked_h5_path(MPI_Comm comm, const std::filesystem::path
 }  // namespace
 
 FieldSeriesWriter::FieldSeriesWriter(MPI_Comm comm, const std::filesystem::path& folder, const std::string& name,
-                                     FileMode mode)
+                                     FileMode mode, std::optional<double> keep_until)
     : name_(name), xdmf_path_(folder / (name + ".xdmf")), file_(comm, checked_h5_path(comm, folder, name), mode) {
-  if (mode == FileMode::append) resume_from_file();
+  if (mode == FileMode::read) throw std::invalid_argument("FieldSeriesWriter: a series is written, not read");
+  if (mode == FileMode::append) resume_from_file(keep_until);
 }
 
 std::int64_t FieldSeriesWriter::first_vertex_index(std::int64_t owned_vertices) const {
@@ -274,19 +275,23 @@ void FieldSeriesWriter::publish_xdmf() {
     throw std::runtime_error("writing " + xdmf_path_.string() + ": " + failure);
 }
 
-void FieldSeriesWriter::resume_from_file() {
+void FieldSeriesWriter::resume_from_file(std::optional<double> keep_until) {
   std::vector<std::pair<std::int64_t, std::string>> steps;
   for (const auto& member : file_.group_members("/"))
     if (const auto step = step_number(member)) steps.emplace_back(*step, "/" + member);
   std::sort(steps.begin(), steps.end());
   for (const auto& [step, group] : steps) {
+    if (keep_until && (!file_.has_attribute(group, "time") || file_.read_double_attribute(group, "time") > *keep_until)) {
+      file_.remove(group);  // the step number is free again: no gap in the names
+      continue;
+    }
     next_step_ = step + 1;
     if (!file_.has_attribute(group, grid_record_attribute)) continue;  // cut short: never in the XDMF
     grids_.push_back(xdmf_grid_from_json(file_.read_string_attribute(group, grid_record_attribute)));
     kind_ = file_.read_string_attribute(group, "kind") == "mesh" ? Kind::mesh : Kind::particles;
   }
   // Restores the XDMF too if it was lost, and drops from it any snapshot the file does not complete.
-  if (!grids_.empty()) publish_xdmf();
+  if (!grids_.empty() || keep_until) publish_xdmf();
 }
 
 }  // namespace tankfsi

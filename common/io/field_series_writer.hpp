@@ -82,8 +82,11 @@ class FieldSeriesWriter {
   /// `folder` must exist (the run folder is made elsewhere). FileMode::append
   /// continues a series already in NAME.h5: its snapshots stay in the XDMF and
   /// new ones follow; the first mesh snapshot after reopening must carry cells.
+  /// `keep_until` (append only): a restarted run continues the series from
+  /// that time: later snapshots (the stopped run's, computed again) are
+  /// removed from the file and the XDMF.
   FieldSeriesWriter(MPI_Comm comm, const std::filesystem::path& folder, const std::string& name,
-                    FileMode mode = FileMode::truncate);
+                    FileMode mode = FileMode::truncate, std::optional<double> keep_until = std::nullopt);
 
   /// File index of this rank's first owned vertex when every rank owns
   /// `owned_vertices` (MPI_Exscan over the ranks).
@@ -107,7 +110,7 @@ class FieldSeriesWriter {
     std::int64_t local_cells = 0;
   };
 
-  void resume_from_file();
+  void resume_from_file(std::optional<double> keep_until);
   void check_snapshot(double time, Kind kind, const std::string& local_problem,
                       const std::string& layout_signature) const;
   std::string begin_step(double time, Kind kind);

@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <system_error>
 #include <type_traits>
@@ -119,7 +120,9 @@ Hdf5File::Hdf5File(MPI_Comm comm, std::filesystem::path path, FileMode mode) : p
     const Checked checked(path_, "");
     auto fapl = checked.open(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(H5P_FILE_ACCESS)");
     checked.status(H5Pset_fapl_mpio(fapl.get(), comm_, MPI_INFO_NULL), "H5Pset_fapl_mpio");
-    if (mode == FileMode::append && exists_on_rank0(comm_, path_)) {
+    if (mode == FileMode::read) {
+      file_ = checked.status(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl.get()), "H5Fopen");
+    } else if (mode == FileMode::append && exists_on_rank0(comm_, path_)) {
       file_ = checked.status(H5Fopen(path_.c_str(), H5F_ACC_RDWR, fapl.get()), "H5Fopen");
     } else {
       file_ = checked.status(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "H5Fcreate");
@@ -151,6 +154,82 @@ std::vector<std::string> Hdf5File::group_members(const std::string& group) const
   };
   checked.status(H5Literate(handle.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), "H5Literate");
   return names;
+}
+
+void Hdf5File::remove(const std::string& object) {
+  Checked(path_, object).status(H5Ldelete(file_, object.c_str(), H5P_DEFAULT), "H5Ldelete");
+}
+
+bool Hdf5File::exists(const std::string& object) const {
+  // H5Lexists needs every parent to exist: walk the path one link at a time.
+  std::string prefix;
+  std::size_t from = 1;
+  while (from <= object.size()) {
+    const std::size_t slash = object.find('/', from);
+    prefix = object.substr(0, slash);
+    if (Checked(path_, prefix).status(H5Lexists(file_, prefix.c_str(), H5P_DEFAULT), "H5Lexists") <= 0) return false;
+    if (slash == std::string::npos) break;
+    from = slash + 1;
+  }
+  return true;
+}
+
+Hdf5File::Shape Hdf5File::shape(const std::string& dataset) const {
+  const Checked checked(path_, dataset);
+  const auto handle = checked.open(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2");
+  const auto space = checked.open(H5Dget_space(handle.get()), H5Sclose, "H5Dget_space");
+  const int rank = checked.status(H5Sget_simple_extent_ndims(space.get()), "H5Sget_simple_extent_ndims");
+  if (rank < 1 || rank > 2)
+    throw std::runtime_error("dataset '" + dataset + "' in " + path_.string() + " is not 1-D or 2-D");
+  hsize_t dims[2] = {0, 1};
+  checked.status(H5Sget_simple_extent_dims(space.get(), dims, nullptr), "H5Sget_simple_extent_dims");
+  return {static_cast<std::int64_t>(dims[0]), rank == 2 ? static_cast<std::int64_t>(dims[1]) : 1};
+}
+
+std::vector<double> Hdf5File::read_rows_double(const std::string& dataset, std::int64_t first,
+                                               std::int64_t count) const {
+  std::vector<double> values(static_cast<std::size_t>(std::max<std::int64_t>(count, 0) * shape(dataset).columns));
+  read_rows(dataset, Element::float64, first, count, values.data());
+  return values;
+}
+
+std::vector<std::int64_t> Hdf5File::read_rows_int64(const std::string& dataset, std::int64_t first,
+                                                    std::int64_t count) const {
+  std::vector<std::int64_t> values(
+      static_cast<std::size_t>(std::max<std::int64_t>(count, 0) * shape(dataset).columns));
+  read_rows(dataset, Element::int64, first, count, values.data());
+  return values;
+}
+
+void Hdf5File::read_rows(const std::string& dataset, Element element, std::int64_t first, std::int64_t count,
+                         void* buffer) const {
+  const Shape whole = shape(dataset);
+  std::string problem;
+  if (first < 0 || count < 0 || first + count > whole.rows)
+    problem = "rows [" + std::to_string(first) + ", " + std::to_string(first + count) + ") beyond its " +
+              std::to_string(whole.rows);
+  throw_if_any_rank_failed(comm_, "reading '" + dataset + "' from " + path_.string(), problem);
+  const Checked checked(path_, dataset);
+  const auto handle = checked.open(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2");
+  const auto file_space = checked.open(H5Dget_space(handle.get()), H5Sclose, "H5Dget_space");
+  const int rank = checked.status(H5Sget_simple_extent_ndims(file_space.get()), "H5Sget_simple_extent_ndims");
+  const hsize_t local_dims[2] = {static_cast<hsize_t>(count), static_cast<hsize_t>(whole.columns)};
+  const auto memory_space = checked.open(H5Screate_simple(rank, local_dims, nullptr), H5Sclose, "H5Screate_simple");
+  if (count > 0) {
+    const hsize_t start[2] = {static_cast<hsize_t>(first), 0};
+    checked.status(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, local_dims, nullptr),
+                   "H5Sselect_hyperslab");
+  } else {
+    checked.status(H5Sselect_none(file_space.get()), "H5Sselect_none");
+    checked.status(H5Sselect_none(memory_space.get()), "H5Sselect_none");
+  }
+  const auto dxpl = checked.open(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate(H5P_DATASET_XFER)");
+  checked.status(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  static std::int64_t no_rows = 0;
+  const hid_t memory_type = element == Element::float64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
+  checked.status(H5Dread(handle.get(), memory_type, memory_space.get(), file_space.get(), dxpl.get(),
+                         count > 0 ? buffer : &no_rows),
+                 "H5Dread");
 }
 
 RowBlock Hdf5File::write_distributed_1d(const std::string& dataset, std::span<const double> local) {
@@ -270,6 +349,31 @@ std::string Hdf5File::read_string_attribute(const std::string& object, const std
   std::string value(size, '\0');
   checked.status(H5Aread(attribute.get(), type.get(), value.data()), "H5Aread");
   value.resize(value.find('\0') == std::string::npos ? value.size() : value.find('\0'));
+  return value;
+}
+
+void Hdf5File::read_numeric_attribute(const std::string& object, const std::string& name, Element element,
+                                      void* value) const {
+  const Checked checked(path_, object + "@" + name);
+  const auto attribute = checked.open(H5Aopen_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+                                      H5Aclose, "H5Aopen_by_name");
+  const auto type = checked.open(H5Aget_type(attribute.get()), H5Tclose, "H5Aget_type");
+  const H5T_class_t kind = H5Tget_class(type.get());
+  if (kind != H5T_INTEGER && kind != H5T_FLOAT)
+    throw std::runtime_error("attribute '" + object + "@" + name + "' in " + path_.string() + " is not a number");
+  checked.status(H5Aread(attribute.get(), element == Element::float64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, value),
+                 "H5Aread");
+}
+
+double Hdf5File::read_double_attribute(const std::string& object, const std::string& name) const {
+  double value = 0.0;
+  read_numeric_attribute(object, name, Element::float64, &value);
+  return value;
+}
+
+std::int64_t Hdf5File::read_int64_attribute(const std::string& object, const std::string& name) const {
+  std::int64_t value = 0;
+  read_numeric_attribute(object, name, Element::int64, &value);
   return value;
 }
 

@@ -24,6 +24,7 @@ namespace tankfsi {
 enum class FileMode {
   truncate,  ///< start a new, empty file (any old one is lost)
   append,    ///< keep what the file holds (create it if it is missing)
+  read,      ///< read only; the file must exist
 };
 
 /// Where one rank's rows sit in a dataset made of the blocks of all ranks in
@@ -68,6 +69,24 @@ class Hdf5File {
   RowBlock write_distributed_2d(const std::string& dataset, std::span<const std::int64_t> local,
                                 std::size_t columns);
 
+  /// Removes a group or dataset (its link; HDF5 does not shrink the file).
+  void remove(const std::string& object);
+  [[nodiscard]] bool exists(const std::string& object) const;
+
+  /// Rows and columns of a 1-D (columns 1) or 2-D dataset.
+  struct Shape {
+    std::int64_t rows = 0;
+    std::int64_t columns = 1;
+  };
+  [[nodiscard]] Shape shape(const std::string& dataset) const;
+  /// Reads rows [first, first + count) of a 1-D or 2-D dataset, row after row
+  /// (count × columns values). Each rank may read its own range (count 0
+  /// too); a range beyond the dataset throws std::invalid_argument on every rank.
+  [[nodiscard]] std::vector<double> read_rows_double(const std::string& dataset, std::int64_t first,
+                                                     std::int64_t count) const;
+  [[nodiscard]] std::vector<std::int64_t> read_rows_int64(const std::string& dataset, std::int64_t first,
+                                                          std::int64_t count) const;
+
   /// Scalar attributes of a group or dataset; an attribute of the same name is replaced.
   void write_attribute(const std::string& object, const std::string& name, double value);
   void write_attribute(const std::string& object, const std::string& name, std::int64_t value);
@@ -75,6 +94,9 @@ class Hdf5File {
   [[nodiscard]] bool has_attribute(const std::string& object, const std::string& name) const;
   /// Reads a string attribute written by write_attribute.
   [[nodiscard]] std::string read_string_attribute(const std::string& object, const std::string& name) const;
+  /// Reads a numeric scalar attribute (converted to the type asked for).
+  [[nodiscard]] double read_double_attribute(const std::string& object, const std::string& name) const;
+  [[nodiscard]] std::int64_t read_int64_attribute(const std::string& object, const std::string& name) const;
 
   /// Pushes everything written so far to the file system, so that other
   /// programs (a viewer, a post-processing script) can read it.
@@ -84,6 +106,10 @@ class Hdf5File {
   enum class Element { float64, int64 };
   RowBlock write_distributed(const std::string& dataset, Element element, const void* local_data,
                              std::size_t local_values, std::size_t columns, int dataset_rank);
+  void read_rows(const std::string& dataset, Element element, std::int64_t first, std::int64_t count,
+                 void* buffer) const;
+  void read_numeric_attribute(const std::string& object, const std::string& name, Element element,
+                              void* value) const;
 
   std::filesystem::path path_;
   MPI_Comm comm_ = MPI_COMM_NULL;

@@ -20,6 +20,13 @@ class ProbeFile {
   /// Creates (truncates) the file and writes the header: time_s, then `columns`.
   ProbeFile(const std::filesystem::path& path, std::vector<std::string> columns, double flush_interval);
 
+  /// Continues the file of a run restarted at `resume_time`: keeps its rows up
+  /// to that time (those after it are the stopped run's, computed again) and
+  /// appends after them. The file must exist with the same header; throws
+  /// std::runtime_error otherwise.
+  ProbeFile(const std::filesystem::path& path, std::vector<std::string> columns, double flush_interval,
+            double resume_time);
+
   /// One row; `values` must match the columns. Times must not decrease.
   void append(double time, std::span<const double> values);
   void flush();
@@ -34,6 +41,9 @@ class ProbeFile {
   double last_flush_time_;
   double last_time_;
   std::ofstream out_;
+
+  void check_columns() const;
+  [[nodiscard]] std::string header() const;
 };
 
 }  // namespace tankfsi

@@ -7,6 +7,7 @@
 #include "common/config/case_schema.hpp"
 #include "common/parallel/mpi_session.hpp"
 #include "common/run/provenance.hpp"
+#include "common/run/stop_signal.hpp"
 
 namespace tankfsi {
 
@@ -37,10 +38,16 @@ int run_work(const CommandLine& cli, const CaseConfig& config, const ProgramInfo
   // Set-up errors are input errors met identically on every rank (the same files
   // read the same way): they return normally, nothing written.
   const ProgramWork work = setup(ProgramInputs{cli, config, log, comm, partner});
+  std::optional<RestartPoint> restart;
+  if (cli.restart) {
+    if (!with_folder) throw ConfigError(Origin{"--restart", 0}, "", "this invocation writes no run folder to continue");
+    restart = find_restart_point(comm, config.path("output.dir"), program.name, *cli.restart, config);
+  }
   std::optional<RunFolder> folder;
   if (with_folder) {
     try {
-      folder = RunFolder::claim(comm, config.path("output.dir"), program.name);
+      folder = restart ? RunFolder::reopen(comm, config.path("output.dir"), program.name)
+                       : RunFolder::claim(comm, config.path("output.dir"), program.name);
     } catch (const std::runtime_error& e) {
       throw config.error_at("output.dir", e.what());
     }
@@ -56,14 +63,23 @@ int run_work(const CommandLine& cli, const CaseConfig& config, const ProgramInfo
     log.info(program.name, " ", tankfsi_version(), " (", tankfsi_git_commit(), ") on ", info.size, " rank(s)");
     log.info("case ", config.file().string(), config.text("title").empty() ? "" : ": " + config.text("title"));
     log.info("run folder ", folder->path().string());
+    if (restart)
+      log.info("restart from ", restart->path.string(), " (checkpoint ", restart->number, ", t = ", restart->time,
+               " s, written on ", restart->ranks, " rank(s))");
   }
 
   StageTimers timers;
-  ProgramContext context{cli, config, folder ? &*folder : nullptr, log, timers, comm, partner};
+  ProgramContext context{cli, config, folder ? &*folder : nullptr, log, timers, comm, partner, restart};
+  install_stop_signal_handlers();
   const auto start = std::chrono::steady_clock::now();
   nlohmann::json results;
   try {
     results = work(context);
+  } catch (const StopRequested& e) {
+    log.info(e.what());
+    if (folder && info.rank == 0)
+      folder->merge_json("summary.json", {{"programs", {{program.name, {{"status", "stopped"}, {"checkpoint", e.checkpoint().string()}}}}}});
+    return exit_status_stopped;
   } catch (const ConfigError& e) {
     log.error(e.what());
     if (job_size() > 1) abort_job(exit_status_bad_input);

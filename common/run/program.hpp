@@ -9,16 +9,21 @@
 //   4. claim the run folder; write case.resolved.yaml, provenance.json, run.log
 //   5. run the program's work, timing its stages
 //   6. merge the work's results and the timings into summary.json
-// Exit status: 0 success, 1 run-time failure, 2 bad input.
+//   With --restart the checkpoint is found and checked in 3 (bad input if it
+//   is missing or was written for another case), and 4 reopens the folder.
+// Exit status: 0 success, 1 run-time failure, 2 bad input, 3 stopped by
+// SIGTERM or SIGUSR1 after writing a checkpoint (common/run/stop_signal.hpp).
 #include <mpi.h>
 
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "common/cli/command_line.hpp"
 #include "common/config/case_config.hpp"
 #include "common/log/logger.hpp"
 #include "common/log/stage_timers.hpp"
+#include "common/run/checkpoint_series.hpp"
 #include "common/run/run_folder.hpp"
 
 namespace tankfsi {
@@ -41,6 +46,8 @@ struct ProgramContext {
   StageTimers& timers;
   MPI_Comm comm;     ///< this program's ranks
   MPI_Comm partner;  ///< inter-communicator to the partner program, MPI_COMM_NULL alone
+  /// --restart: the checkpoint to continue from (the folder is the earlier run's).
+  std::optional<RestartPoint> restart;
 };
 
 /// The program's work once its run folder exists; returns its results for

@@ -61,6 +61,20 @@ RunFolder RunFolder::claim(MPI_Comm comm, const fs::path& folder, const std::str
   return RunFolder(folder, program);
 }
 
+RunFolder RunFolder::reopen(MPI_Comm comm, const fs::path& folder, const std::string& program) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string refusal;
+  if (rank == 0) {
+    std::error_code ec;
+    if (!fs::exists(folder / ".claims" / program, ec))
+      refusal = "run folder '" + folder.string() + "' holds no run of " + program + " to restart";
+  }
+  refusal = broadcast_text(comm, refusal);
+  if (!refusal.empty()) throw std::runtime_error(refusal);
+  return RunFolder(folder, program);
+}
+
 void write_file_atomically(const fs::path& path, const std::string& content) {
   const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   {

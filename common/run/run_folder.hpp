@@ -23,6 +23,10 @@ class RunFolder {
   /// reason, which the caller turns into an error at output.dir.
   static RunFolder claim(MPI_Comm comm, const std::filesystem::path& folder, const std::string& program);
 
+  /// Collective: the folder of an earlier run of `program` that a restart
+  /// continues (it must hold that program's claim); throws like claim().
+  static RunFolder reopen(MPI_Comm comm, const std::filesystem::path& folder, const std::string& program);
+
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
   [[nodiscard]] std::filesystem::path probes() const { return path_ / "probes"; }
   [[nodiscard]] const std::string& program() const { return program_; }

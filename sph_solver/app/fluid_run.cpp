@@ -8,9 +8,14 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
+#include "common/config/config_error.hpp"
 #include "common/io/field_series_writer.hpp"
+#include "common/io/number_text.hpp"
+#include "common/run/stop_signal.hpp"
+#include "sph_solver/app/fluid_checkpoint.hpp"
 #include "common/log/progress_line.hpp"
 #include "common/io/probe_file.hpp"
 #include "sph_solver/isph/fluid_probes.hpp"
@@ -41,25 +46,26 @@ std::vector<double> probe_values(const FluidSolver& solver, const ProbeSpec& pro
 /// Everything the run writes, owned by rank 0 for the CSV files.
 class Outputs {
  public:
-  Outputs(ProgramContext& context, const FluidCase& c, const FluidSolver& solver)
+  /// `resume_time`: a restarted run's time; the series and probe files go on
+  /// from it (what the stopped run wrote after it is dropped).
+  Outputs(ProgramContext& context, const FluidCase& c, const FluidSolver& solver, std::optional<double> resume_time)
       : solver_(solver),
         top_(c.domain.max().dot(c.model.up())),
         depth_suffix_(c.model.dimension == 2 ? "_per_m" : ""),
-        particles_(context.comm, context.folder->path(), "fluid"),
-        walls_(context.comm, context.folder->path(), "walls"),
+        particles_(context.comm, context.folder->path(), "fluid", mode_of(resume_time), resume_time),
+        walls_(context.comm, context.folder->path(), "walls", mode_of(resume_time), resume_time),
         probes_(c.probes) {
     if (context.log.rank() == 0) {
-      for (const auto& probe : c.probes)
-        probe_files_.push_back(std::make_unique<ProbeFile>(context.folder->probes() / (probe.name + ".csv"),
-                                                           probe_columns(probe.quantity), c.field_interval));
-      global_ = std::make_unique<ProbeFile>(
-          context.folder->probes() / "fluid.csv",
-          std::vector<std::string>{"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
-                                   "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_,
-                                   "force_z_N" + depth_suffix_, "kinetic_energy_J" + depth_suffix_, "time_step_s",
-                                   "ppe_iterations", "free_surface_particles", "max_density_error",
-                                   "max_speed_m_s"},
-          c.field_interval);
+      const auto open = [&](const std::string& name, std::vector<std::string> columns) {
+        const auto path = context.folder->probes() / (name + ".csv");
+        return resume_time ? std::make_unique<ProbeFile>(path, std::move(columns), c.field_interval, *resume_time)
+                           : std::make_unique<ProbeFile>(path, std::move(columns), c.field_interval);
+      };
+      for (const auto& probe : c.probes) probe_files_.push_back(open(probe.name, probe_columns(probe.quantity)));
+      global_ = open("fluid", {"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
+                               "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_, "force_z_N" + depth_suffix_,
+                               "kinetic_energy_J" + depth_suffix_, "time_step_s", "ppe_iterations",
+                               "free_surface_particles", "max_density_error", "max_speed_m_s"});
     }
   }
 
@@ -142,8 +148,13 @@ class Outputs {
         for (const int v : tri) triangles.push_back(v);
     }
     MeshSnapshot snapshot{ids, positions, std::nullopt, {NamedField{"force", 3, force_values}, NamedField{"pressure", 1, pressure}}, {}};
-    if (walls_.snapshot_count() == 0) snapshot.cells = SurfaceCells{triangles, {}};
+    if (!wall_cells_written_) snapshot.cells = SurfaceCells{triangles, {}};  // then reused
     walls_.write_mesh(t, snapshot);
+    wall_cells_written_ = true;
+  }
+
+  static FileMode mode_of(std::optional<double> resume_time) {
+    return resume_time ? FileMode::append : FileMode::truncate;
   }
 
   [[nodiscard]] int rank() const {
@@ -161,6 +172,7 @@ class Outputs {
   std::vector<std::unique_ptr<ProbeFile>> probe_files_;
   std::unique_ptr<ProbeFile> global_;
   Eigen::Vector3d last_total_force_ = Eigen::Vector3d::Zero();
+  bool wall_cells_written_ = false;
 };
 
 /// Running statistics of the steps for summary.json.
@@ -186,7 +198,64 @@ struct RunStatistics {
     particle_steps += static_cast<double>(r.particles);
     ++limiting[limit];
   }
+
+  /// For a checkpoint (min_dt kept only once finite: JSON has no infinity).
+  [[nodiscard]] nlohmann::json to_json() const {
+    nlohmann::json j{{"steps", steps}, {"max_dt", max_dt}, {"ppe_iterations", ppe_iterations},
+                     {"max_ppe_iterations", max_ppe_iterations}, {"max_density_error", max_density_error},
+                     {"particle_steps", particle_steps}, {"simulated", simulated}, {"limiting", limiting}};
+    if (std::isfinite(min_dt)) j["min_dt"] = min_dt;
+    return j;
+  }
+  static RunStatistics from_json(const nlohmann::json& j) {
+    RunStatistics s;
+    s.steps = j.at("steps").get<long long>();
+    if (j.contains("min_dt")) s.min_dt = j.at("min_dt").get<double>();
+    s.max_dt = j.at("max_dt").get<double>();
+    s.ppe_iterations = j.at("ppe_iterations").get<long long>();
+    s.max_ppe_iterations = j.at("max_ppe_iterations").get<int>();
+    s.max_density_error = j.at("max_density_error").get<double>();
+    s.particle_steps = j.at("particle_steps").get<double>();
+    s.simulated = j.at("simulated").get<double>();
+    s.limiting = j.at("limiting").get<std::map<std::string, long long>>();
+    return s;
+  }
 };
+
+/// The time loop's own state: what a checkpoint keeps beside the solver's.
+struct LoopState {
+  double t = 0.0;
+  double next_probe = 0.0;
+  double next_field = 0.0;
+  double next_checkpoint = std::numeric_limits<double>::infinity();
+  double speed = 0.0;     ///< the step controller's inputs: the last step's largest speed
+  double pressure = 0.0;  ///< and largest |P|
+  RunStatistics stats;
+
+  [[nodiscard]] nlohmann::json to_json() const {
+    nlohmann::json j{{"t", t}, {"next_probe", next_probe}, {"next_field", next_field}, {"speed", speed},
+                     {"pressure", pressure}, {"stats", stats.to_json()}};
+    if (std::isfinite(next_checkpoint)) j["next_checkpoint"] = next_checkpoint;
+    return j;
+  }
+  static LoopState from_json(const nlohmann::json& j) {
+    LoopState s;
+    s.t = j.at("t").get<double>();
+    s.next_probe = j.at("next_probe").get<double>();
+    s.next_field = j.at("next_field").get<double>();
+    if (j.contains("next_checkpoint")) s.next_checkpoint = j.at("next_checkpoint").get<double>();
+    s.speed = j.at("speed").get<double>();
+    s.pressure = j.at("pressure").get<double>();
+    s.stats = RunStatistics::from_json(j.at("stats"));
+    return s;
+  }
+};
+
+/// The next multiple of `interval` after `t` (infinity for interval 0: never).
+double next_multiple(double t, double interval) {
+  if (!(interval > 0.0)) return std::numeric_limits<double>::infinity();
+  return interval * (std::floor(t / interval * (1.0 + 1e-12)) + 1.0);
+}
 
 }  // namespace
 
@@ -195,23 +264,54 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   FluidSolver solver(context.comm, c.model, std::move(c.walls), std::move(c.particles), c.domain, c.ppe_options,
                      &context.timers);
   solver.rebalance_interval = c.rebalance_interval;
+  if (context.restart && context.partner != MPI_COMM_NULL)
+    throw ConfigError(Origin{"--restart", 0}, "", "restarting a coupled run is not supported yet");
+  std::optional<LoopState> resumed;
+  if (context.restart) {
+    const FluidRestart restart = read_fluid_state(context.comm, *context.restart);
+    solver.resume(restart.state, restart.cuts);
+    resumed = LoopState::from_json(restart.run_state);
+    context.log.info("fluid: continues from t = ", resumed->t, " s, step ", resumed->stats.steps,
+                     restart.cuts.empty() ? " (particles balanced anew over this run's ranks)" : "");
+  }
   context.log.info("fluid: ", solver.global_particle_count(), " particles, ", solver.walls().mesh().triangle_count(),
                    " wall triangles, h = ", c.model.smoothing_length, " m, kernel ", kernel_name(c.model.kernel));
   // With a partner program, the walls on the structure's wetted surface move with it.
   std::unique_ptr<FluidCoupling> coupling;
   if (context.partner != MPI_COMM_NULL) coupling = std::make_unique<FluidCoupling>(context, solver, motion.acceleration(0.0));
-  Outputs outputs(context, c, solver);
-  RunStatistics stats;
-  double t = 0.0;
+  Outputs outputs(context, c, solver, resumed ? std::optional<double>(resumed->t) : std::nullopt);
+  const double checkpoint_interval = context.config.real("output.checkpoint_interval");
+  LoopState loop;
   StepReport last;
-  outputs.sample(t, last);
-  outputs.snapshot(t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
-  double next_probe = c.probe_interval;
-  double next_field = c.field_interval;
+  if (resumed) {
+    loop = *resumed;
+  } else {
+    outputs.sample(loop.t, last);
+    outputs.snapshot(loop.t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
+    loop.next_probe = c.probe_interval;
+    loop.next_field = c.field_interval;
+    loop.next_checkpoint = next_multiple(0.0, checkpoint_interval);
+    loop.speed = solver.max_speed();  // then each step's report carries them
+    loop.pressure = solver.max_pressure();
+  }
+  double& t = loop.t;
+  RunStatistics& stats = loop.stats;
+  const double particle_steps_before = stats.particle_steps;
+  CheckpointSeries checkpoints(context.comm, context.folder->path(), context.folder->program(),
+                               context.restart ? context.restart->number + 1 : 1);
+  double checkpoint_time = resumed ? resumed->t : -1.0;  // of the last one written
+  const auto write_checkpoint = [&] {
+    const auto scope = context.timers.time("checkpoint");
+    checkpoint_time = t;
+    outputs.flush();
+    auto file = checkpoints.begin(t, context.config);
+    write_fluid_state(*file, solver, loop.to_json());
+    const auto path = checkpoints.commit(std::move(file));
+    context.log.info("checkpoint ", path.string(), " at t = ", t, " s");
+    return path;
+  };
   const double end = c.end_time;
   Particles last_good = solver.particles();
-  double speed = solver.max_speed();  // then each step's report carries them
-  double pressure = solver.max_pressure();
   int rank = 0;
   MPI_Comm_rank(context.comm, &rank);
   ProgressLine progress("sph_solver", end, rank == 0 && ProgressLine::on_terminal());
@@ -219,15 +319,15 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     while (coupling ? coupling->ongoing() : t < end * (1.0 - 1e-12)) {
       const Eigen::Vector3d force = c.model.body_force(motion.acceleration(t));
       const auto limits = time_step_limits(c.model, c.cfl_number, c.adaptive_time_step ? c.max_time_step : c.fixed_time_step,
-                                           speed, force.norm(), pressure);
+                                           loop.speed, force.norm(), loop.pressure);
       double dt = c.adaptive_time_step ? limits.smallest() : c.fixed_time_step;
       if (!c.adaptive_time_step) {
         // Stability bound of a fixed step: a particle must not cross h in one step.
-        const auto bound = time_step_limits(c.model, 1.0, c.fixed_time_step, speed, force.norm(), pressure);
+        const auto bound = time_step_limits(c.model, 1.0, c.fixed_time_step, loop.speed, force.norm(), loop.pressure);
         if (dt > bound.smallest() * (1.0 + 1e-12))
           throw std::runtime_error("the fixed time step " + std::to_string(dt) + " s exceeds the " + bound.limiting() +
                                    " stability limit " + std::to_string(bound.smallest()) + " s at t = " +
-                                   std::to_string(t) + " s (max speed " + std::to_string(speed) +
+                                   std::to_string(t) + " s (max speed " + std::to_string(loop.speed) +
                                    " m/s); use a smaller fluid.time_step.value or the adaptive mode");
       }
       // The last two steps share what is left when it is less than two steps: a
@@ -244,25 +344,39 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       const bool window_done = coupling ? coupling->after_step(dt) : true;
       if (coupling && coupling->rolled_back()) {
         t = coupling->time();  // a repeated window starts again from its saved state
-        speed = solver.max_speed();
-        pressure = solver.max_pressure();
+        loop.speed = solver.max_speed();
+        loop.pressure = solver.max_pressure();
         continue;
       }
-      speed = last.max_speed;
-      pressure = last.max_pressure;
+      loop.speed = last.max_speed;
+      loop.pressure = last.max_pressure;
       // The outputs of an implicit window wait until it is accepted.
       if (!window_done && coupling->repeats_windows()) continue;
       progress.update(t, stats.steps);
-      if (t >= next_probe * (1.0 - 1e-12)) {
+      if (t >= loop.next_probe * (1.0 - 1e-12)) {
         outputs.sample(t, last);
-        next_probe += c.probe_interval * std::max(1.0, std::floor((t - next_probe) / c.probe_interval) + 1.0);
+        loop.next_probe += c.probe_interval * std::max(1.0, std::floor((t - loop.next_probe) / c.probe_interval) + 1.0);
       }
-      if (t >= next_field * (1.0 - 1e-12)) {
+      if (t >= loop.next_field * (1.0 - 1e-12)) {
         outputs.snapshot(t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
-        next_field += c.field_interval * std::max(1.0, std::floor((t - next_field) / c.field_interval) + 1.0);
+        loop.next_field += c.field_interval * std::max(1.0, std::floor((t - loop.next_field) / c.field_interval) + 1.0);
         progress.clear();  // the log line takes the line; the progress comes back after it
         context.log.info("t = ", t, " s, step ", stats.steps, ", dt = ", dt, " s, PPE ", last.ppe_iterations,
                          " iterations, max |v| = ", last.max_speed, " m/s");
+      }
+      // Checkpoints (alone: after any step; coupled runs do not write them yet).
+      if (!coupling) {
+        const int signal = agreed_stop_signal(context.comm);
+        const bool due = t >= loop.next_checkpoint * (1.0 - 1e-12);
+        if (due) loop.next_checkpoint = next_multiple(t, checkpoint_interval);
+        if (due || signal != 0) {
+          progress.clear();
+          const auto path = write_checkpoint();
+          if (signal != 0)
+            throw StopRequested(std::string("stopped by ") + stop_signal_name(signal) + " at t = " + number_text(t) +
+                                    " s; continue with --restart (checkpoint " + path.string() + ")",
+                                path);
+        }
       }
     }
   } catch (const std::runtime_error& e) {
@@ -273,6 +387,8 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   }
   progress.clear();
   outputs.flush();
+  // The end state: a later run may go on from it (a longer end_time).
+  if (!coupling && checkpoint_time != t) write_checkpoint();
   if (coupling) coupling->finish();
   const double wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_clock_start).count();
@@ -288,9 +404,11 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
             {"max_density_error", stats.max_density_error},
             {"overflow", {{"particles", solver.removed_count()}, {"volume_m3", solver.removed_volume()}}},
             {"final_wall_force_N", {force.x(), force.y(), force.z()}},
-            {"wall_seconds", wall_seconds},
-            {"particle_steps_per_second", stats.particle_steps / wall_seconds},
-            {"wall_seconds_per_simulated_second", t > 0.0 ? wall_seconds / t : 0.0}}}};
+            {"wall_seconds", wall_seconds},  // of this process (a restarted run: since the restart)
+            {"particle_steps_per_second", (stats.particle_steps - particle_steps_before) / wall_seconds},
+            {"wall_seconds_per_simulated_second",
+             t > (resumed ? resumed->t : 0.0) ? wall_seconds / (t - (resumed ? resumed->t : 0.0)) : 0.0}}}};
+  if (resumed) results["fluid"]["restarted_at_s"] = resumed->t;
   if (coupling) results["fluid"]["coupling"] = coupling->summary();
   return results;
 }

@@ -184,16 +184,31 @@ void FluidSolver::remove_escaped() {
   particles_after_removal_ = static_cast<long long>(sums[2]);
 }
 
+void FluidSolver::rebalance() {
+  decomposition_.balance(particles_.position);
+  decomposition_.migrate(particles_);
+  CellList cells(model_.dimension);
+  cells.build(particles_.position, kernel_.support_radius());
+  particles_.reorder(cells.cell_order());
+}
+
 void FluidSolver::redistribute() {
   if (steps_ % rebalance_interval == 0) {
-    decomposition_.balance(particles_.position);
-    decomposition_.migrate(particles_);
-    CellList cells(model_.dimension);
-    cells.build(particles_.position, kernel_.support_radius());
-    particles_.reorder(cells.cell_order());
+    rebalance();
   } else {
     decomposition_.migrate(particles_);
   }
+}
+
+void FluidSolver::resume(const Checkpoint& state, std::span<const double> cuts) {
+  restore(state);
+  if (cuts.empty()) {
+    rebalance();
+  } else {
+    decomposition_.restore_cuts(cuts);
+  }
+  predicted_density_.assign(particles_.size(), std::numeric_limits<double>::quiet_NaN());
+  free_surface_flags_ = predicted_density_;
 }
 
 std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vector3d& ground_acceleration) {

@@ -114,6 +114,15 @@ class FluidSolver {
     removed_volume_ = checkpoint.removed_volume;
   }
 
+  /// What a restart puts back (sph_solver/app/fluid_checkpoint.hpp): this
+  /// rank's particles and counters; `cuts` the decomposition's cuts when the
+  /// particles are each rank's own of a run on as many ranks (the state is
+  /// then the one written, bit for bit), empty when they are any share of
+  /// them (another rank count: balanced and migrated anew). Collective.
+  void resume(const Checkpoint& state, std::span<const double> cuts);
+  [[nodiscard]] std::vector<double> decomposition_cuts() const { return decomposition_.cuts(); }
+  [[nodiscard]] long long steps() const { return steps_; }
+
   /// Collective: the largest speed over all ranks.
   [[nodiscard]] double max_speed() const;
   /// Collective: the largest |P| of the particles over all ranks.
@@ -155,6 +164,8 @@ class FluidSolver {
   /// (the walls as they are at the step's end).
   void check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const;
   void redistribute();
+  /// Balances, migrates and puts the owned particles in cell order.
+  void rebalance();
   StageTimers::Scope stage(const std::string& name);
 
   MPI_Comm comm_;

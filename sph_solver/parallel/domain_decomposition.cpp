@@ -257,6 +257,32 @@ void DomainDecomposition::balance(std::span<const Eigen::Vector3d> owned_positio
   compute_boxes(0, whole_space());
 }
 
+std::vector<double> DomainDecomposition::cuts() const {
+  std::vector<double> values;
+  for (const Node& n : nodes_)
+    if (n.lower >= 0) {
+      values.push_back(n.axis);
+      values.push_back(n.cut);
+    }
+  return values;
+}
+
+void DomainDecomposition::restore_cuts(std::span<const double> cuts) {
+  std::size_t inner = 0;
+  for (const Node& n : nodes_) inner += n.lower >= 0 ? 1 : 0;
+  if (cuts.size() != 2 * inner)
+    throw std::invalid_argument("DomainDecomposition::restore_cuts: " + std::to_string(cuts.size() / 2) +
+                                " cuts for a tree of " + std::to_string(inner));
+  std::size_t k = 0;
+  for (Node& n : nodes_)
+    if (n.lower >= 0) {
+      n.axis = static_cast<int>(cuts[k]);
+      n.cut = cuts[k + 1];
+      k += 2;
+    }
+  compute_boxes(0, whole_space());
+}
+
 // Cuts every inner node of one level, then moves each of its particles to a child.
 void DomainDecomposition::cut_level(std::span<const Eigen::Vector3d> positions, std::span<const int> level_nodes,
                                     std::vector<int>& node_of_particle) {

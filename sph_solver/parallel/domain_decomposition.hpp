@@ -65,6 +65,13 @@ class DomainDecomposition {
   /// any rank has a coordinate that is not finite or, in 2D, z != 0.
   void balance(std::span<const Eigen::Vector3d> owned_positions);
 
+  /// The cuts of the last balance(): axis and position of every inner node,
+  /// the same on every rank (what a checkpoint keeps).
+  [[nodiscard]] std::vector<double> cuts() const;
+  /// Puts back cuts() of a decomposition of as many ranks; throws
+  /// std::invalid_argument if they do not fit this one's tree.
+  void restore_cuts(std::span<const double> cuts);
+
   /// The rank owning x (the same answer on every rank).
   [[nodiscard]] int owner(const Eigen::Vector3d& x) const;
 

@@ -1,0 +1,195 @@
+#!/usr/bin/python3
+"""Restart check: a job stopped by a signal and restarted from its checkpoint
+gives the probe histories and field series of the job run straight through.
+
+Usage:
+  check_restart.py --ranks 2 [--restart-ranks 1] [--signal TERM|USR1] [--target procs|launcher]
+                   [--at 0.4] [--tolerance 0] -- mpiexec -n NP PROGRAM CASE --output OUTPUT RESTART ...
+
+In the job's command line NP is replaced by the rank count (--ranks, or
+--restart-ranks for the restart), OUTPUT by the run folder, and RESTART by
+nothing (the straight and the stopped runs) or by --restart (the restart); an
+MPMD line (PROG_A ... : PROG_B ...) names them in each part.
+
+1. The straight run; its wall time W.
+2. The same job into another folder, sent the signal at `at` x W: to every
+   process the launcher started (`procs`, as a batch scheduler does), or to the
+   launcher itself (`launcher`, which forwards SIGUSR1 to them). It must stop
+   with a non-zero status, say "stopped by SIG...", and leave a checkpoint.
+3. The restart into that folder must finish.
+4. Every probe CSV must equal the straight run's: the same rows (times), and
+   values bit for bit (--tolerance 0) or within the tolerance relative to each
+   column's largest magnitude; columns of wall-clock time are left out, and
+   with a tolerance the PPE's iteration counts (hypre's hierarchy depends on
+   the partition) and times of adaptive steps compare to it too. The
+   XDMF series must list the same snapshot times, none twice.
+"""
+import argparse
+import pathlib
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+TIMING_COLUMNS = re.compile(r"(wait|work|wall)_?s$|seconds")
+
+
+def command_for(template, ranks, output, restart):
+    words = []
+    for word in template:
+        if word == "NP":
+            words.append(str(ranks))
+        elif word == "OUTPUT":
+            words.append(str(output))
+        elif word == "RESTART":
+            if restart:
+                words.append("--restart")
+        else:
+            words.append(word)
+    return words
+
+
+def descendants(pid):
+    found = []
+    result = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True)
+    for child in result.stdout.split():
+        found.append(int(child))
+        found += descendants(int(child))
+    return found
+
+
+def csv_table(path):
+    lines = path.read_text().splitlines()
+    header = lines[0].split(",")
+    rows = [line.split(",") for line in lines[1:] if line]
+    return header, rows
+
+
+def compare_probes(straight, restarted, tolerance):
+    worst = 0.0
+    files = sorted((straight / "probes").glob("*.csv"))
+    if not files:
+        raise SystemExit(f"FAIL: no probe files in {straight}")
+    for path in files:
+        other = restarted / "probes" / path.name
+        if not other.exists():
+            raise SystemExit(f"FAIL: the restarted run has no {path.name}")
+        header, a = csv_table(path)
+        header_b, b = csv_table(other)
+        if header != header_b:
+            raise SystemExit(f"FAIL: {path.name}: headers differ")
+        times_a = [row[0] for row in a]
+        times_b = [row[0] for row in b]
+        # Adaptive steps make times of round-off difference on other rank counts.
+        close = (tolerance > 0.0 and len(a) == len(b) and
+                 np.allclose(np.array(times_a, float), np.array(times_b, float), rtol=tolerance, atol=0.0))
+        if times_a != times_b and not close:
+            extra = sorted(set(times_b) - set(times_a))[:3]
+            missing = sorted(set(times_a) - set(times_b))[:3]
+            duplicates = len(times_b) - len(set(times_b))
+            raise SystemExit(f"FAIL: {path.name}: {len(a)} rows straight, {len(b)} restarted "
+                             f"(missing {missing}, extra {extra}, {duplicates} times twice)")
+        for k, column in enumerate(header[1:], start=1):
+            if TIMING_COLUMNS.search(column):
+                continue
+            # Another partition gives hypre another hierarchy: counts differ by one or two.
+            if tolerance > 0.0 and column == "ppe_iterations":
+                continue
+            if tolerance == 0.0:
+                for row_a, row_b in zip(a, b):
+                    if row_a[k] != row_b[k]:
+                        raise SystemExit(f"FAIL: {path.name} {column} at t = {row_a[0]}: {row_a[k]} straight, "
+                                         f"{row_b[k]} restarted (bit for bit expected)")
+                continue
+            x = np.array([float(r[k]) for r in a])
+            y = np.array([float(r[k]) for r in b])
+            scale = max(np.abs(x).max(), 1e-300)
+            difference = np.abs(x - y).max() / scale
+            worst = max(worst, difference)
+            if difference > tolerance:
+                raise SystemExit(f"FAIL: {path.name} {column}: differs by {difference:.3g} of its largest "
+                                 f"magnitude (tolerance {tolerance})")
+    return len(files), worst
+
+
+def series_times(folder):
+    found = {}
+    for path in sorted(folder.glob("*.xdmf")):
+        found[path.name] = re.findall(r'<Time Value="([^"]+)"', path.read_text())
+    return found
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--ranks", type=int, default=1)
+    parser.add_argument("--restart-ranks", type=int)
+    parser.add_argument("--signal", choices=["TERM", "USR1"], default="TERM")
+    parser.add_argument("--target", choices=["procs", "launcher"], default="procs")
+    parser.add_argument("--at", type=float, default=0.45)
+    parser.add_argument("--tolerance", type=float, default=0.0)
+    parser.add_argument("--timeout", type=float, default=900)
+    parser.add_argument("job", nargs=argparse.REMAINDER)
+    args = parser.parse_args()
+    job = args.job[1:] if args.job[:1] == ["--"] else args.job
+    restart_ranks = args.restart_ranks or args.ranks
+    with tempfile.TemporaryDirectory() as scratch:
+        straight = pathlib.Path(scratch) / "straight"
+        stopped = pathlib.Path(scratch) / "stopped"
+        start = time.monotonic()
+        result = subprocess.run(command_for(job, args.ranks, straight, False), capture_output=True, text=True,
+                                timeout=args.timeout)
+        wall = time.monotonic() - start
+        if result.returncode != 0:
+            raise SystemExit(f"FAIL: the straight run exited {result.returncode}\n{result.stdout}\n{result.stderr}")
+
+        process = subprocess.Popen(command_for(job, args.ranks, stopped, False), stdout=subprocess.PIPE,
+                                   stderr=subprocess.STDOUT, text=True)
+        time.sleep(args.at * wall)
+        number = getattr(signal, "SIG" + args.signal)
+        targets = [process.pid] if args.target == "launcher" else descendants(process.pid)
+        for pid in targets:
+            try:
+                os_kill(pid, number)
+            except ProcessLookupError:
+                pass
+        output, _ = process.communicate(timeout=args.timeout)
+        if process.returncode == 0:
+            raise SystemExit(f"FAIL: the job signalled at {args.at * wall:.1f} s of {wall:.1f} s finished "
+                             f"normally (signal too late?)\n{output}")
+        if f"stopped by SIG{args.signal}" not in output:
+            raise SystemExit(f"FAIL: the signalled job exited {process.returncode} without "
+                             f"'stopped by SIG{args.signal}'\n{output}")
+        checkpoints = sorted((stopped / "checkpoints").glob("*.h5"))
+        if not checkpoints or list((stopped / "checkpoints").glob("*.partial")):
+            raise SystemExit(f"FAIL: checkpoints after the stop: {[p.name for p in checkpoints]}")
+        stop_line = next(line for line in output.splitlines() if "stopped by" in line)
+
+        result = subprocess.run(command_for(job, restart_ranks, stopped, True), capture_output=True, text=True,
+                                timeout=args.timeout)
+        if result.returncode != 0:
+            raise SystemExit(f"FAIL: the restart exited {result.returncode}\n{result.stdout}\n{result.stderr}")
+
+        files, worst = compare_probes(straight, stopped, args.tolerance)
+        a, b = series_times(straight), series_times(stopped)
+        same_series = a == b or (args.tolerance > 0.0 and a.keys() == b.keys() and all(
+            len(a[k]) == len(b[k]) and np.allclose(np.array(a[k], float), np.array(b[k], float), rtol=args.tolerance)
+            for k in a))
+        if not same_series or any(len(set(t)) != len(t) for t in b.values()):
+            raise SystemExit(f"FAIL: field series differ: straight {a}, restarted {b}")
+        agreement = "bit for bit" if args.tolerance == 0.0 else f"to {worst:.3g} (tolerance {args.tolerance})"
+        print(f"PASS: {stop_line.strip()}; restarted on {restart_ranks} rank(s): {files} probe files agree "
+              f"{agreement}; {sum(len(t) for t in a.values())} snapshots in {len(a)} series, as straight")
+    return 0
+
+
+def os_kill(pid, number):
+    import os
+    os.kill(pid, number)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
