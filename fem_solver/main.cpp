@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
        "mpirun -np 2 fem_solver cases/tank3d_dry/case.yaml", "fem_solver case.yaml -shell_ksp_type cg -shell_pc_type gamg",
        "fem_solver case.yaml -eps_monitor -log_view"},
       {},
-      "structure"};
+      "structure",
+      true};  // restarts only on the checkpoint's rank count (structure_checkpoint.hpp)
   return tankfsi::run_program(argc, argv, program, [](const tankfsi::ProgramInputs& inputs) -> tankfsi::ProgramWork {
     auto structure_case =
         std::make_shared<tankfsi::fem::StructureCase>(tankfsi::fem::read_structure_case(inputs.config));

@@ -25,6 +25,7 @@ struct ProgramInfo {
   std::vector<std::string> examples;  ///< copy-pasteable command lines
   std::vector<std::string> flags;     ///< extra flags the program accepts: "--prepare  Writes ..."
   std::string role;                   ///< role in a coupled job ("fluid", "structure"); empty: never couples
+  bool restarts_on_same_ranks_only = false;  ///< --restart refuses a checkpoint of another rank count
 };
 
 struct CommandLine {

@@ -48,6 +48,12 @@ ProbeFile::ProbeFile(const std::filesystem::path& path, std::vector<std::string>
   if (!out_) throw std::runtime_error("cannot open probe file '" + path_.string() + "'");
 }
 
+std::unique_ptr<ProbeFile> open_probe_file(const std::filesystem::path& path, std::vector<std::string> columns,
+                                           double flush_interval, std::optional<double> resume_time) {
+  if (resume_time) return std::make_unique<ProbeFile>(path, std::move(columns), flush_interval, *resume_time);
+  return std::make_unique<ProbeFile>(path, std::move(columns), flush_interval);
+}
+
 void ProbeFile::check_columns() const {
   for (const auto& c : columns_)
     if (c.empty() || c.find_first_of(",\n\"") != std::string::npos || c == "time_s")

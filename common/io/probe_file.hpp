@@ -9,6 +9,8 @@
 // so a killed run keeps its history up to the last output interval.
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,5 +47,9 @@ class ProbeFile {
   void check_columns() const;
   [[nodiscard]] std::string header() const;
 };
+
+/// A new probe file, or with `resume_time` the continued one of a restart.
+std::unique_ptr<ProbeFile> open_probe_file(const std::filesystem::path& path, std::vector<std::string> columns,
+                                           double flush_interval, std::optional<double> resume_time);
 
 }  // namespace tankfsi

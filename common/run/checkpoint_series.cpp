@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <regex>
 #include <set>
@@ -92,6 +94,11 @@ fs::path CheckpointSeries::commit(std::unique_ptr<Hdf5File> file) {
   throw_if_any_rank_failed(comm_, "checkpoint", broadcast_text(comm_, problem));
   ++next_;
   return final_path;
+}
+
+double next_checkpoint_time(double t, double interval) {
+  if (!(interval > 0.0)) return std::numeric_limits<double>::infinity();
+  return interval * (std::floor(t / interval * (1.0 + 1e-12)) + 1.0);
 }
 
 std::vector<std::string> restart_case_differences(const std::string& written_yaml, const std::string& current_yaml) {

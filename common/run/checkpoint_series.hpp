@@ -47,6 +47,10 @@ class CheckpointSeries {
   int next_;
 };
 
+/// The time of the next periodic checkpoint after `t`: the next multiple of
+/// `interval` (output.checkpoint_interval), infinity for interval 0 (none).
+[[nodiscard]] double next_checkpoint_time(double t, double interval);
+
 /// A checkpoint to restart from, opened for reading on every rank of `comm`.
 struct RestartPoint {
   std::filesystem::path path;

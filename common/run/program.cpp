@@ -42,6 +42,10 @@ int run_work(const CommandLine& cli, const CaseConfig& config, const ProgramInfo
   if (cli.restart) {
     if (!with_folder) throw ConfigError(Origin{"--restart", 0}, "", "this invocation writes no run folder to continue");
     restart = find_restart_point(comm, config.path("output.dir"), program.name, *cli.restart, config);
+    if (program.restarts_on_same_ranks_only && restart->ranks != info.size)
+      throw ConfigError(Origin{"--restart", 0}, "", restart->path.string() + " was written on " +
+                                                        std::to_string(restart->ranks) + " rank(s); " + program.name +
+                                                        " continues only on as many, not " + std::to_string(info.size));
   }
   std::optional<RunFolder> folder;
   if (with_folder) {

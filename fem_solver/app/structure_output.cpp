@@ -31,8 +31,11 @@ StructureTotals support_totals(const ShellMesh& mesh, const NodalValues& support
   return t;
 }
 
-StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c, const StructureSystem& system)
-    : system_(system), probes_(c.probes), writer_(context.comm, context.folder->path(), "structure") {
+StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c, const StructureSystem& system,
+                                 std::optional<double> resume_time)
+    : system_(system), probes_(c.probes),
+      writer_(context.comm, context.folder->path(), "structure", resume_time ? FileMode::append : FileMode::truncate,
+              resume_time) {
   int rank = 0;
   int size = 1;
   MPI_Comm_rank(context.comm, &rank);
@@ -59,14 +62,15 @@ StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c
     }
   if (rank == 0) {
     for (const auto& p : probes_)
-      probe_files_.push_back(std::make_unique<ProbeFile>(context.folder->probes() / (p.name + ".csv"),
-                                                         probe_columns(p.quantity, p.direction.has_value()), c.field_interval));
-    totals_file_ = std::make_unique<ProbeFile>(
+      probe_files_.push_back(open_probe_file(context.folder->probes() / (p.name + ".csv"),
+                                             probe_columns(p.quantity, p.direction.has_value()), c.field_interval,
+                                             resume_time));
+    totals_file_ = open_probe_file(
         context.folder->probes() / "structure.csv",
         std::vector<std::string>{"base_shear_x_N", "base_shear_y_N", "support_force_z_N", "overturning_moment_x_Nm",
                                  "overturning_moment_y_Nm", "external_force_x_N", "external_force_y_N",
                                  "external_force_z_N", "energy_J"},
-        c.field_interval);
+        c.field_interval, resume_time);
   }
 }
 
@@ -102,8 +106,9 @@ void StructureOutput::write_fields(double time, const NodalValues& displacement,
                          NamedField{"transverse_shear_23", 1, shear_2}, NamedField{"von_mises_top", 1, top},
                          NamedField{"von_mises_bottom", 1, bottom}}};
   if (!velocity.empty()) snapshot.node_fields.push_back(NamedField{"velocity", 3, v});
-  if (writer_.snapshot_count() == 0) snapshot.cells = SurfaceCells{triangles_, quads_};
+  if (!cells_written_) snapshot.cells = SurfaceCells{triangles_, quads_};  // then reused
   writer_.write_mesh(time, snapshot);
+  cells_written_ = true;
 }
 
 void StructureOutput::sample(double time, const NodalValues& displacement, const NodalValues& velocity,

@@ -5,6 +5,7 @@
 // probes/structure.csv (base shear and overturning moment from the support
 // forces, total external load, energy).
 #include <memory>
+#include <optional>
 
 #include "common/io/field_series_writer.hpp"
 #include "common/io/probe_file.hpp"
@@ -27,7 +28,10 @@ struct StructureTotals {
 
 class StructureOutput {
  public:
-  StructureOutput(ProgramContext& context, const StructureCase& c, const StructureSystem& system);
+  /// `resume_time`: a restarted run's time; the series and probe files go on
+  /// from it (what the stopped run wrote after it is dropped).
+  StructureOutput(ProgramContext& context, const StructureCase& c, const StructureSystem& system,
+                  std::optional<double> resume_time = std::nullopt);
 
   /// One snapshot of the fields; `velocity` may be empty (static, modal).
   void write_fields(double time, const NodalValues& displacement, const NodalValues& velocity);
@@ -45,6 +49,7 @@ class StructureOutput {
   std::vector<std::size_t> cell_elements_;   ///< local elements: triangles first, then quads
   std::vector<std::unique_ptr<ProbeFile>> probe_files_;
   std::unique_ptr<ProbeFile> totals_file_;
+  bool cells_written_ = false;
 };
 
 }  // namespace tankfsi::fem

@@ -3,9 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
+#include "common/config/config_error.hpp"
+#include "common/io/number_text.hpp"
 #include "common/log/progress_line.hpp"
+#include "common/run/checkpoint_series.hpp"
+#include "common/run/stop_signal.hpp"
+#include "fem_solver/app/structure_checkpoint.hpp"
 #include "fem_solver/analysis/modal_analysis.hpp"
 #include "fem_solver/analysis/static_analysis.hpp"
 #include "fem_solver/analysis/structure_solver.hpp"
@@ -14,6 +21,7 @@
 
 namespace tankfsi::fem {
 namespace {
+
 
 nlohmann::json model_summary(const StructureSystem& system, const std::string& analysis) {
   const ShellMesh& mesh = system.model().mesh;
@@ -127,16 +135,25 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
   if (wetted) solver.set_interface(extract_interface(system.model().mesh, "wetted"));
   solver.prepare(c.time_step);
-  StructureOutput output(context, c, system);
+  if (context.restart && context.partner != MPI_COMM_NULL)
+    throw ConfigError(Origin{"--restart", 0}, "", "restarting a coupled run is not supported yet");
+  std::optional<nlohmann::json> resumed;
+  double checkpoint_restart_time = 0.0;
+  if (context.restart) {
+    resumed = read_structure_state(context.comm, *context.restart, solver);
+    checkpoint_restart_time = solver.time();
+    context.log.info("structure: continues from t = ", solver.time(), " s, step ", solver.steps());
+  }
+  StructureOutput output(context, c, system, resumed ? std::optional<double>(solver.time()) : std::nullopt);
   // With a partner program, the fluid's forces load the wetted surface.
   std::unique_ptr<StructureCoupling> coupling;
   if (context.partner != MPI_COMM_NULL) {
     if (!wetted) throw context.config.error_at("structure", "a coupled run needs the element set 'wetted' (the interface)");
     coupling = std::make_unique<StructureCoupling>(context, solver);
-  } else if (context.config.text("structure.initial_state") == "equilibrium") {
+  } else if (!resumed && context.config.text("structure.initial_state") == "equilibrium") {
     solver.start_at_equilibrium();
   }
-  if (context.config.text("structure.initial_state") == "equilibrium")
+  if (!resumed && context.config.text("structure.initial_state") == "equilibrium")
     context.log.info("the structure starts in static equilibrium with the loads at t = 0: largest displacement ",
                      solver.largest_displacement(), " m");
   // Implicit windows may be repeated: outputs wait until a window is accepted.
@@ -148,13 +165,45 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
     output.sample(solver.time(), solver.displacement(), solver.velocity(), solver.acceleration(), totals);
     return totals;
   };
-  sample();
-  output.write_fields(0.0, solver.displacement(), solver.velocity());
+  const double checkpoint_interval = context.config.real("output.checkpoint_interval");
   double next_probe = c.probe_interval;
   double next_field = c.field_interval;
+  double next_checkpoint = next_checkpoint_time(0.0, checkpoint_interval);
   Eigen::Vector2d peak_shear = Eigen::Vector2d::Zero();
   double peak_displacement = 0.0;
+  if (resumed) {
+    const nlohmann::json& j = *resumed;
+    next_probe = j.at("next_probe").get<double>();
+    next_field = j.at("next_field").get<double>();
+    next_checkpoint = j.contains("next_checkpoint") ? j.at("next_checkpoint").get<double>()
+                                                    : std::numeric_limits<double>::infinity();
+    peak_shear = Eigen::Vector2d(j.at("peak_shear")[0].get<double>(), j.at("peak_shear")[1].get<double>());
+    peak_displacement = j.at("peak_displacement").get<double>();
+  } else {
+    sample();
+    output.write_fields(0.0, solver.displacement(), solver.velocity());
+  }
+  const auto loop_state = [&] {
+    nlohmann::json j{{"next_probe", next_probe}, {"next_field", next_field},
+                     {"peak_shear", {peak_shear.x(), peak_shear.y()}}, {"peak_displacement", peak_displacement}};
+    if (std::isfinite(next_checkpoint)) j["next_checkpoint"] = next_checkpoint;
+    return j;
+  };
+  CheckpointSeries checkpoints(context.comm, context.folder->path(), context.folder->program(),
+                               context.restart ? context.restart->number + 1 : 1);
+  double checkpoint_time = resumed ? solver.time() : -1.0;
+  const auto write_checkpoint = [&] {
+    const auto scope = context.timers.time("checkpoint");
+    checkpoint_time = solver.time();
+    output.flush();
+    auto file = checkpoints.begin(solver.time(), context.config);
+    write_structure_state(*file, solver, loop_state());
+    const auto path = checkpoints.commit(std::move(file));
+    context.log.info("checkpoint ", path.string(), " at t = ", solver.time(), " s");
+    return path;
+  };
   const auto start = std::chrono::steady_clock::now();
+  const long long steps_before = solver.steps();
   int rank = 0;
   MPI_Comm_rank(context.comm, &rank);
   ProgressLine progress("fem_solver", c.end_time, rank == 0 && ProgressLine::on_terminal());
@@ -178,6 +227,21 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
         context.log.info("t = ", solver.time(), " s, step ", solver.steps(), ", largest displacement ",
                          solver.largest_displacement(), " m");
       }
+      // Checkpoints (alone: after any step; coupled runs do not write them yet).
+      if (!coupling) {
+        const int signal = agreed_stop_signal(context.comm);
+        const bool due = solver.time() >= next_checkpoint * (1.0 - 1e-12);
+        if (due) next_checkpoint = next_checkpoint_time(solver.time(), checkpoint_interval);
+        if (due || signal != 0) {
+          progress.clear();
+          const auto path = write_checkpoint();
+          if (signal != 0)
+            throw StopRequested(std::string("stopped by ") + stop_signal_name(signal) + " at t = " +
+                                    number_text(solver.time()) + " s; continue with --restart (checkpoint " +
+                                    path.string() + ")",
+                                path);
+        }
+      }
     }
   } catch (const std::runtime_error& e) {
     // A failed step leaves the solver at the last good state.
@@ -185,6 +249,8 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
     output.write_fields(solver.time() + 1e-9, solver.displacement(), solver.velocity());
     throw std::runtime_error(std::string(e.what()) + " — the last good state is the final snapshot of structure.xdmf");
   }
+  // The end state: a later run may go on from it (a longer end_time).
+  if (!coupling && checkpoint_time != solver.time()) write_checkpoint();
   progress.clear();
   output.flush();
   if (coupling) coupling->finish();
@@ -195,7 +261,8 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   summary["time_step_s"] = c.time_step;
   summary["initial_state"] = context.config.text("structure.initial_state");
   summary["factorisations"] = solver.integrator().factorisations();
-  summary["seconds_per_step"] = seconds / static_cast<double>(std::max<long long>(solver.steps(), 1));
+  summary["seconds_per_step"] = seconds / static_cast<double>(std::max<long long>(solver.steps() - steps_before, 1));
+  if (resumed) summary["restarted_at_s"] = checkpoint_restart_time;
   summary["rayleigh"] = {{"alpha_per_s", damping.alpha},
                          {"beta_s", damping.beta},
                          {"target_modes", {c.damping.first_mode, c.damping.second_mode}},

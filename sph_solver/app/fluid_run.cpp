@@ -57,9 +57,8 @@ class Outputs {
         probes_(c.probes) {
     if (context.log.rank() == 0) {
       const auto open = [&](const std::string& name, std::vector<std::string> columns) {
-        const auto path = context.folder->probes() / (name + ".csv");
-        return resume_time ? std::make_unique<ProbeFile>(path, std::move(columns), c.field_interval, *resume_time)
-                           : std::make_unique<ProbeFile>(path, std::move(columns), c.field_interval);
+        return open_probe_file(context.folder->probes() / (name + ".csv"), std::move(columns), c.field_interval,
+                               resume_time);
       };
       for (const auto& probe : c.probes) probe_files_.push_back(open(probe.name, probe_columns(probe.quantity)));
       global_ = open("fluid", {"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
@@ -251,11 +250,6 @@ struct LoopState {
   }
 };
 
-/// The next multiple of `interval` after `t` (infinity for interval 0: never).
-double next_multiple(double t, double interval) {
-  if (!(interval > 0.0)) return std::numeric_limits<double>::infinity();
-  return interval * (std::floor(t / interval * (1.0 + 1e-12)) + 1.0);
-}
 
 }  // namespace
 
@@ -290,7 +284,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     outputs.snapshot(loop.t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
     loop.next_probe = c.probe_interval;
     loop.next_field = c.field_interval;
-    loop.next_checkpoint = next_multiple(0.0, checkpoint_interval);
+    loop.next_checkpoint = next_checkpoint_time(0.0, checkpoint_interval);
     loop.speed = solver.max_speed();  // then each step's report carries them
     loop.pressure = solver.max_pressure();
   }
@@ -368,7 +362,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       if (!coupling) {
         const int signal = agreed_stop_signal(context.comm);
         const bool due = t >= loop.next_checkpoint * (1.0 - 1e-12);
-        if (due) loop.next_checkpoint = next_multiple(t, checkpoint_interval);
+        if (due) loop.next_checkpoint = next_checkpoint_time(t, checkpoint_interval);
         if (due || signal != 0) {
           progress.clear();
           const auto path = write_checkpoint();

@@ -132,6 +132,9 @@ def main():
     parser.add_argument("--at", type=float, default=0.45)
     parser.add_argument("--tolerance", type=float, default=0.0)
     parser.add_argument("--timeout", type=float, default=900)
+    parser.add_argument("--refused-ranks", type=int,
+                        help="first try a restart on this many ranks: it must be refused (exit 2, message "
+                             "naming the rank counts) and change no file of the run")
     parser.add_argument("job", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     job = args.job[1:] if args.job[:1] == ["--"] else args.job
@@ -167,6 +170,20 @@ def main():
         if not checkpoints or list((stopped / "checkpoints").glob("*.partial")):
             raise SystemExit(f"FAIL: checkpoints after the stop: {[p.name for p in checkpoints]}")
         stop_line = next(line for line in output.splitlines() if "stopped by" in line)
+
+        if args.refused_ranks:
+            before = {p: p.read_bytes() for p in stopped.rglob("*") if p.is_file() and p.name != "run.log"}
+            result = subprocess.run(command_for(job, args.refused_ranks, stopped, True), capture_output=True,
+                                    text=True, timeout=args.timeout)
+            after = {p: p.read_bytes() for p in stopped.rglob("*") if p.is_file() and p.name != "run.log"}
+            expected = f"continues only on as many, not {args.refused_ranks}"
+            if result.returncode == 0 or expected not in result.stderr + result.stdout:
+                raise SystemExit(f"FAIL: a restart on {args.refused_ranks} ranks exited {result.returncode} "
+                                 f"without '{expected}'\n{result.stdout}\n{result.stderr}")
+            if before != after:
+                changed = sorted(str(p.relative_to(stopped)) for p in set(before) | set(after)
+                                 if before.get(p) != after.get(p))
+                raise SystemExit(f"FAIL: the refused restart changed {changed}")
 
         result = subprocess.run(command_for(job, restart_ranks, stopped, True), capture_output=True, text=True,
                                 timeout=args.timeout)
