@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
+#include "common/run/checkpoint_series.hpp"
+#include "common/run/stop_signal.hpp"
 #include "coupling/acceleration/acceleration.hpp"
 #include "coupling/interface/interface_exchange.hpp"
 #include "coupling/mapping/nearest_projection.hpp"
@@ -167,6 +170,19 @@ class Participant::Impl {
   bool write_checkpoint_ = false;
   bool read_checkpoint_ = false;
   bool window_completed_ = false;
+
+  // Restart points (PROTOCOL.md, "Window ends").
+  double restart_interval_ = 0.0;
+  double next_restart_time_ = std::numeric_limits<double>::infinity();
+  bool stop_requested_ = false;
+  bool restart_agreed_ = false;     ///< at the window end being completed
+  bool restart_point_due_ = false;  ///< for restart_point_due()
+  bool stopped_ = false;
+  int stop_signal_ = 0;
+  CouplingRestartState restart_state_;
+  std::vector<double> last_output_part_;  ///< this program's output of the last window (its distributed part)
+
+  void resume(const CouplingRestartState& state);
   std::vector<WindowReport> reports_;
   double work_seconds_ = 0.0;
 
@@ -190,6 +206,16 @@ class Participant::Impl {
   }
 
   void handshake();
+  /// Everything initialize() and resume() set up before the first exchange.
+  void start_data();
+  /// The window-end records (not after the last window, where both write a
+  /// checkpoint anyway): sets restart_agreed_ and stop_signal_.
+  void agree_on_window_end(bool last);
+  /// Fills restart_state_ (in accept(), between the window's end and the next input).
+  void capture_restart_state();
+  /// Fluid: a whole-interface array from a slice, and back.
+  [[nodiscard]] std::vector<double> whole(const std::vector<double>& part) const;
+  [[nodiscard]] std::vector<double> part_of(const CouplingRestartState& state, const std::string& name) const;
   /// This program's output of the window in its distributed part: fluid, the
   /// force average on its slice; structure, its displacements.
   [[nodiscard]] std::vector<double> output_part();
@@ -272,20 +298,13 @@ void Participant::Impl::initialize() {
   if (!exchange_) exchange_interface();
   const auto start = Clock::now();
   const double wait_before = link_.wait_seconds();
-  initialized_ = true;
   const std::size_t count = value_count();
   if (!initial_values_.empty() && initial_values_.size() != count)
     throw CouplingError("initial data of " + std::to_string(initial_values_.size()) + " values, expected " +
                         std::to_string(count));
   if (initial_values_.empty()) initial_values_.assign(count, 0.0);
-  if (side_ == Side::fluid) {
-    const std::size_t mesh_count = 3 * exchange_->global_vertex_count();
-    if (!own_points_.empty()) mapping_ = std::make_unique<NearestProjection>(exchange_->mesh(), own_points_);
-    initial_values_ = to_mesh(initial_values_);
-    step_force_.assign(mesh_count, 0.0);
-    force_average_ = WindowAverage(mesh_count);
-  }
-  if (controller_) acceleration_ = make_acceleration(settings_, link_.local());
+  start_data();
+  if (side_ == Side::fluid) initial_values_ = to_mesh(initial_values_);
 
   // Initial data: each program sends its initial output, receives the
   // partner's, and starts its own input from it.
@@ -326,6 +345,134 @@ void Participant::Impl::initialize() {
     else
       aim(receive_part(1, 0, partner_data_name() + " of window 1").part);
     if (parallel) last_output_ = previous_output_ = sent_input_;  // x̂_0 = [d_0, F_0]
+  }
+  write_checkpoint_ = settings_.is_implicit();
+  work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);
+}
+
+void Participant::Impl::start_data() {
+  initialized_ = true;
+  if (side_ == Side::fluid) {
+    const std::size_t mesh_count = 3 * exchange_->global_vertex_count();
+    if (!own_points_.empty()) mapping_ = std::make_unique<NearestProjection>(exchange_->mesh(), own_points_);
+    step_force_.assign(mesh_count, 0.0);
+    force_average_ = WindowAverage(mesh_count);
+  }
+  if (controller_) acceleration_ = make_acceleration(settings_, link_.local());
+  next_restart_time_ = next_checkpoint_time(window_start_, restart_interval_);
+}
+
+// ---- restarts ---------------------------------------------------------------
+
+void Participant::Impl::agree_on_window_end(bool last) {
+  const double end = window_start_ + window_length();
+  if (last) {
+    restart_agreed_ = true;  // the end state: both write it, nothing to agree
+    return;
+  }
+  // This program's wishes, over its ranks: a checkpoint due, a stop (signal number, or -1 when asked).
+  std::array<int, 3> mine{end >= next_restart_time_ * (1 - 1e-12) ? 1 : 0, received_stop_signal(),
+                          stop_requested_ ? 1 : 0};
+  MPI_Allreduce(MPI_IN_PLACE, mine.data(), 3, MPI_INT, MPI_MAX, link_.local());
+  const bool my_stop = mine[1] != 0 || mine[2] != 0;
+  Control record;
+  record.kind = static_cast<std::int32_t>(ControlKind::window_end);
+  record.window = window_;
+  record.iteration = mine[1] != 0 ? mine[1] : (my_stop ? -1 : 0);
+  record.converged = (mine[0] != 0 ? 1 : 0) | (my_stop ? 2 : 0);
+  record.time = end;
+  link_.send_control(record);
+  const Control theirs = link_.receive_window_end("the window-end record of window " + std::to_string(window_));
+  if (theirs.window != window_)
+    throw CouplingError("protocol out of step: the " + std::string(side_name(side_)) + " program ended window " +
+                        std::to_string(window_) + ", its partner window " + std::to_string(theirs.window));
+  const bool their_stop = (theirs.converged & 2) != 0;
+  restart_agreed_ = mine[0] != 0 || (theirs.converged & 1) != 0 || my_stop || their_stop;
+  stop_signal_ = my_stop ? record.iteration : their_stop ? theirs.iteration : 0;
+}
+
+std::vector<double> Participant::Impl::whole(const std::vector<double>& part) const {
+  return side_ == Side::fluid ? exchange_->gather_slices(part) : part;
+}
+
+std::vector<double> Participant::Impl::part_of(const CouplingRestartState& state, const std::string& name) const {
+  const auto found = state.arrays.find(name);
+  if (found == state.arrays.end()) throw CouplingError("restart state without '" + name + "'");
+  if (side_ != Side::fluid) return found->second;
+  const std::size_t whole_size = 3 * exchange_->global_vertex_count();
+  if (found->second.size() != whole_size)
+    throw CouplingError("restart state '" + name + "' of " + std::to_string(found->second.size()) +
+                        " values for an interface of " + std::to_string(whole_size));
+  const auto begin = found->second.begin() + static_cast<long>(exchange_->slice_offset());
+  return {begin, begin + static_cast<long>(exchange_->part_size())};
+}
+
+void Participant::Impl::capture_restart_state() {
+  CouplingRestartState& state = restart_state_;
+  state = CouplingRestartState{};
+  state.window = window_;
+  state.window_start = window_start_;
+  state.reports = reports_;
+  state.arrays["input_start"] = side_ == Side::fluid ? path_.start() : ramp_.start();
+  state.arrays["last_output"] = whole(last_output_part_);
+  if (controller_) {
+    state.arrays["sent_input"] = whole(sent_input_);
+    state.arrays["controller_last"] = whole(last_output_);
+    state.arrays["controller_previous"] = whole(previous_output_);
+    const Acceleration::History history = acceleration_->history();
+    state.history_numbers = history.numbers;
+    for (std::size_t k = 0; k < history.vectors.size(); ++k)
+      state.arrays["history_" + std::to_string(k)] = whole(history.vectors[k]);
+  }
+}
+
+void Participant::Impl::resume(const CouplingRestartState& state) {
+  if (initialized_) throw CouplingError("resume() after initialize() or resume()");
+  if (!exchange_) exchange_interface();
+  const auto start = Clock::now();
+  const double wait_before = link_.wait_seconds();
+  window_ = state.window;
+  window_start_ = state.window_start;
+  reports_ = state.reports;
+  start_data();
+  const auto input_start = state.arrays.find("input_start");
+  if (input_start == state.arrays.end()) throw CouplingError("restart state without 'input_start'");
+  if (side_ == Side::fluid)
+    path_ = DisplacementPath(input_start->second);
+  else
+    ramp_ = LoadRamp(input_start->second);
+  // Each program sends the output of the window that ended again: the
+  // partner takes its input for the next window from it, as at that window's end.
+  last_output_part_ = part_of(state, "last_output");
+  if (side_ == Side::structure) displacement_ = last_output_part_;
+  const int ended = window_ - 1;
+  send_part(last_output_part_, ended, verdict_accept);
+  const Received previous = receive_part(ended, 0, partner_data_name() + " of window " + std::to_string(ended));
+  if (!settings_.is_implicit()) {
+    if (lags(settings_, side_))
+      aim(previous.part);
+    else
+      aim(receive_part(window_, 0, partner_data_name() + " of window " + std::to_string(window_)).part);
+  } else if (!controller_) {
+    aim(receive_part(ended, 0, "the coupling input of window " + std::to_string(window_)).part);
+  } else {
+    sent_input_ = part_of(state, "sent_input");
+    last_output_ = part_of(state, "controller_last");
+    previous_output_ = part_of(state, "controller_previous");
+    Acceleration::History history;
+    history.numbers = state.history_numbers;
+    for (std::size_t k = 0; state.arrays.count("history_" + std::to_string(k)) != 0; ++k)
+      history.vectors.push_back(part_of(state, "history_" + std::to_string(k)));
+    acceleration_->restore_history(history);
+    const bool parallel = settings_.implicit_mode == ImplicitMode::parallel;
+    const std::size_t follower_size = parallel ? last_output_part_.size() : sent_input_.size();
+    if (follower_size > sent_input_.size()) throw CouplingError("restart state: 'sent_input' too short");
+    send_part(std::vector<double>(sent_input_.begin(), sent_input_.begin() + static_cast<long>(follower_size)), ended,
+              verdict_accept);
+    if (parallel)
+      aim(std::vector<double>(sent_input_.begin() + static_cast<long>(follower_size), sent_input_.end()));
+    else
+      aim(receive_part(window_, 0, partner_data_name() + " of window " + std::to_string(window_)).part);
   }
   write_checkpoint_ = settings_.is_implicit();
   work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);
@@ -381,6 +528,7 @@ void Participant::Impl::aim(const std::vector<double>& part) {
 void Participant::Impl::advance(double dt) {
   require_initialized("advance");
   if (finalized_) throw CouplingError("advance: after finalize()");
+  if (stopped_) throw CouplingError("advance: the partners agreed to stop at t = " + std::to_string(time()) + " s");
   if (!is_ongoing()) throw CouplingError("advance: the coupled run has ended (t = " + std::to_string(time()) + " s)");
   const double remaining = max_time_step();
   if (!(dt > 0) || dt > remaining * (1 + window_end_tolerance) + window_end_tolerance * settings_.time_window)
@@ -414,26 +562,36 @@ void Participant::Impl::complete_window() {
 
 void Participant::Impl::complete_explicit() {
   const bool last = last_window();
-  if (sends_output(settings_, side_, last)) send_part(output_part(), window_, verdict_accept);
+  last_output_part_ = output_part();
+  if (sends_output(settings_, side_, last)) send_part(last_output_part_, window_, verdict_accept);
   std::vector<double> next;
-  if (receives_input(last)) {
-    const int from_window = lags(settings_, side_) ? window_ : window_ + 1;
+  const bool lagging = lags(settings_, side_);
+  const auto receive_input = [&](int from_window) {
     next = receive_part(from_window, 0, partner_data_name() + " of window " + std::to_string(from_window)).part;
-  }
+  };
+  // The window-end records come where both programs have sent and taken
+  // everything of this window: after the lagging side's receive, before the
+  // receive of the side one window ahead (which a stop makes unnecessary).
+  if (receives_input(last) && lagging) receive_input(window_);
+  agree_on_window_end(last);
+  if (receives_input(last) && !lagging && stop_signal_ == 0) receive_input(window_ + 1);
   accept(next, 1, true, -1, -1);
 }
 
 void Participant::Impl::complete_follower() {
-  send_part(output_part(), window_, verdict_accept);
+  last_output_part_ = output_part();
+  send_part(last_output_part_, window_, verdict_accept);
   const Received verdict = receive_part(window_, iteration_, "the verdict on window " + std::to_string(window_));
   if (verdict.control.converged == verdict_stop)
     throw CouplingError(link_.partner_name() + " stopped the run: window " + std::to_string(window_) +
                         " did not converge in " + std::to_string(settings_.max_iterations) +
                         " coupling iterations (coupling.implicit.max_iterations)");
-  if (verdict.control.converged == verdict_repeat)
+  if (verdict.control.converged == verdict_repeat) {
     repeat(verdict.part);
-  else
+  } else {
+    agree_on_window_end(last_window());
     accept(last_window() ? std::vector<double>{} : verdict.part, iteration_ + 1, true, -1, -1);
+  }
 }
 
 std::vector<double> Participant::Impl::predicted(const std::vector<double>& last,
@@ -449,6 +607,7 @@ void Participant::Impl::complete_controller() {
   const bool last = last_window();
   // x̂: this program's output; in parallel mode followed by the partner's.
   std::vector<double> output = output_part();
+  last_output_part_ = output;
   const std::size_t own_size = output.size();
   if (parallel) {
     const Received forces = receive_part(window_, iteration_, "forces of window " + std::to_string(window_));
@@ -505,10 +664,11 @@ void Participant::Impl::complete_controller() {
   send_part(std::vector<double>(next.begin(), next.begin() + static_cast<long>(follower_size)), window_,
             accepted ? verdict_accept : verdict_repeat);
   const int iterations = iteration_ + 1;
+  if (accepted) agree_on_window_end(last);  // before the follower runs the next window (serial)
   std::vector<double> own_input;
   if (parallel) {
     own_input.assign(next.begin() + static_cast<long>(own_size), next.end());
-  } else if (!(accepted && last)) {
+  } else if (!(accepted && last) && !(accepted && stop_signal_ != 0)) {
     own_input = receive_part(accepted ? window_ + 1 : window_, accepted ? 0 : iteration_ + 1,
                              partner_data_name() + " of the next coupling iteration")
                     .part;
@@ -547,9 +707,21 @@ void Participant::Impl::accept(const std::vector<double>& next_input_part, int i
     ramp_.next_window();
     displacement_written_ = false;
   }
-  if (!next_input_part.empty()) aim(next_input_part);
+  // A restart continues from here: the next input is what the partner sends again.
+  if (restart_agreed_) {
+    capture_restart_state();
+    next_restart_time_ = next_checkpoint_time(window_start_, restart_interval_);
+    restart_point_due_ = true;
+    restart_agreed_ = false;
+  }
+  if (stop_signal_ != 0) {
+    stopped_ = true;
+    exchange_->finish_sends("the partner to take the last interface data");
+  } else if (!next_input_part.empty()) {
+    aim(next_input_part);
+  }
   window_completed_ = true;
-  write_checkpoint_ = settings_.is_implicit() && is_ongoing();
+  write_checkpoint_ = settings_.is_implicit() && is_ongoing() && !stopped_;
 }
 
 void Participant::Impl::repeat(const std::vector<double>& next_input_part) {
@@ -661,5 +833,15 @@ bool Participant::window_completed() const { return impl_->window_completed_; }
 const std::vector<WindowReport>& Participant::window_reports() const { return impl_->reports_; }
 CouplingTimings Participant::timings() const { return {impl_->link_.wait_seconds(), impl_->work_seconds_}; }
 void Participant::finalize() { impl_->finalize(); }
+void Participant::set_restart_interval(double seconds) {
+  if (impl_->initialized_) throw CouplingError("set_restart_interval: after initialize()");
+  if (!(seconds >= 0.0)) throw CouplingError("set_restart_interval: the interval must be 0 or positive");
+  impl_->restart_interval_ = seconds;
+}
+void Participant::request_stop() { impl_->stop_requested_ = true; }
+bool Participant::restart_point_due() { return impl_->take(impl_->restart_point_due_); }
+int Participant::stop_signal() const { return impl_->stop_signal_; }
+const CouplingRestartState& Participant::restart_state() const { return impl_->restart_state_; }
+void Participant::resume(const CouplingRestartState& state) { impl_->resume(state); }
 
 }  // namespace tankfsi::coupling

@@ -63,6 +63,24 @@ struct WindowReport {
   std::array<double, 3> impulse_applied{};
 };
 
+/// What a restart of the coupling needs, taken at the end of an accepted
+/// window at which both programs agreed to write a checkpoint
+/// (Participant::restart_point_due()). On the fluid side every array is the
+/// whole interface's, the same on every fluid rank (so the fluid may restart
+/// on another rank count); on the structure side each rank's own part (it
+/// restarts on as many ranks).
+struct CouplingRestartState {
+  int window = 1;            ///< the window to come (1-based)
+  double window_start = 0.0;  ///< its start time (s)
+  std::vector<WindowReport> reports;  ///< every accepted window so far
+  /// input_start: the input at the window start (fluid: wall displacement;
+  /// structure: load); last_output: the output of the window just ended;
+  /// implicit controller: sent_input, controller_last, controller_previous
+  /// and history_K (the acceleration's vectors).
+  std::map<std::string, std::vector<double>> arrays;
+  std::vector<double> history_numbers;  ///< the acceleration's numbers
+};
+
 /// Time this rank spent in the coupling (s): waiting for the partner, and
 /// working (reductions, packing, acceleration).
 struct CouplingTimings {
@@ -135,6 +153,30 @@ class Participant {
   /// Reports of every accepted window so far.
   [[nodiscard]] const std::vector<WindowReport>& window_reports() const;
   [[nodiscard]] CouplingTimings timings() const;
+
+  /// Checkpoints for restarts (PROTOCOL.md, "Window ends"). At the end of
+  /// every accepted window but the last the two programs exchange a
+  /// window-end record: whether each wants a checkpoint there (its
+  /// `interval` of coupled time reached since the last one; 0: never) and
+  /// whether it must stop (a SIGTERM or SIGUSR1 received,
+  /// common/run/stop_signal.hpp, or request_stop()). Either one's wish
+  /// holds for both. Call before initialize() or resume().
+  void set_restart_interval(double seconds);
+  /// Asks the partners to stop at the end of the current window.
+  void request_stop();
+  /// True once after an advance() that ended an accepted window at which
+  /// both programs write a checkpoint (one asked for it, one must stop, or
+  /// the run's last window ended).
+  [[nodiscard]] bool restart_point_due();
+  /// The signal that made either program ask to stop (0: none; -1: asked by
+  /// request_stop()): after writing its checkpoint the program ends.
+  [[nodiscard]] int stop_signal() const;
+  /// The state at the last restart point (after restart_point_due()).
+  [[nodiscard]] const CouplingRestartState& restart_state() const;
+  /// Collective over both programs, instead of initialize(): continues from
+  /// a restart state written by this side at the same window as the
+  /// partner's (each program re-sends the output of the window that ended).
+  void resume(const CouplingRestartState& state);
 
   /// Collective over both programs: tells the partner this program is done.
   void finalize();

@@ -209,6 +209,8 @@ void Hdf5File::read_rows(const std::string& dataset, Element element, std::int64
     problem = "rows [" + std::to_string(first) + ", " + std::to_string(first + count) + ") beyond its " +
               std::to_string(whole.rows);
   throw_if_any_rank_failed(comm_, "reading '" + dataset + "' from " + path_.string(), problem);
+  // An empty dataset has no storage to read from (HDF5 1.10 fails on the attempt), as when written.
+  if (whole.rows == 0) return;
   const Checked checked(path_, dataset);
   const auto handle = checked.open(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2");
   const auto file_space = checked.open(H5Dget_space(handle.get()), H5Sclose, "H5Dget_space");

@@ -29,6 +29,17 @@ class Acceleration {
   virtual void window_converged() = 0;
   /// Columns of the least-squares history (IQN-ILS; 0 for the others).
   [[nodiscard]] virtual int history_columns() const { return 0; }
+
+  /// What the method carries from one window to the next (taken after
+  /// window_converged()), for a restart: numbers, and vectors of the same
+  /// local layout as the iterates.
+  struct History {
+    std::vector<double> numbers;
+    std::vector<std::vector<double>> vectors;
+  };
+  [[nodiscard]] virtual History history() const { return {}; }
+  /// Puts back a history() of a method of the same settings.
+  virtual void restore_history(const History&) {}
 };
 
 /// constant: x̃ + ω r; aitken: ω from the last two residuals (Küttler & Wall

@@ -1,6 +1,8 @@
 #include "coupling/acceleration/iqn_ils.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace tankfsi::coupling {
 
@@ -91,6 +93,29 @@ void IqnIls::window_converged() {
   ++window_;
   has_previous_ = false;
   while (!columns_.empty() && window_ - columns_.back().window > reused_windows_) columns_.pop_back();
+}
+
+Acceleration::History IqnIls::history() const {
+  History h;
+  h.numbers.push_back(static_cast<double>(window_));
+  for (const auto& column : columns_) {
+    h.numbers.push_back(static_cast<double>(column.window));
+    h.vectors.push_back(column.residual_change);
+    h.vectors.push_back(column.output_change);
+  }
+  return h;
+}
+
+void IqnIls::restore_history(const History& history) {
+  if (history.numbers.empty() || history.vectors.size() != 2 * (history.numbers.size() - 1))
+    throw std::invalid_argument("IqnIls::restore_history: " + std::to_string(history.numbers.size()) + " numbers and " +
+                                std::to_string(history.vectors.size()) + " vectors do not make a history");
+  window_ = static_cast<long>(history.numbers[0]);
+  columns_.clear();
+  for (std::size_t k = 1; k < history.numbers.size(); ++k)
+    columns_.push_back(Column{history.vectors[2 * (k - 1)], history.vectors[2 * (k - 1) + 1],
+                              static_cast<long>(history.numbers[k])});
+  has_previous_ = false;
 }
 
 }  // namespace tankfsi::coupling

@@ -26,6 +26,9 @@ class IqnIls final : public Acceleration {
                                  std::span<const double> weights) override;
   void window_converged() override;
   [[nodiscard]] int history_columns() const override { return static_cast<int>(columns_.size()); }
+  /// numbers: the window count, then each column's window; vectors: V_i, W_i of each column.
+  [[nodiscard]] History history() const override;
+  void restore_history(const History& history) override;
 
  private:
   struct Column {

@@ -1,5 +1,6 @@
 // Constant under-relaxation and Aitken's dynamic relaxation.
 #include <cmath>
+#include <stdexcept>
 
 #include "coupling/acceleration/acceleration.hpp"
 #include "coupling/acceleration/iqn_ils.hpp"
@@ -64,6 +65,12 @@ class AitkenRelaxation final : public Acceleration {
     return relaxed(x_tilde, x_hat, omega_);
   }
   void window_converged() override { has_previous_ = false; }
+  [[nodiscard]] History history() const override { return {{omega_}, {}}; }
+  void restore_history(const History& history) override {
+    if (history.numbers.size() != 1) throw std::invalid_argument("AitkenRelaxation::restore_history: one number expected");
+    omega_ = history.numbers[0];
+    has_previous_ = false;
+  }
 
  private:
   double initial_;

@@ -145,6 +145,22 @@ Control PartnerLink::receive_control(const std::string& what) {
   return control;
 }
 
+Control PartnerLink::receive_window_end(const std::string& what) {
+  Control control;
+  if (leader()) {
+    std::vector<MPI_Request> request(1);
+    MPI_Irecv(&control, sizeof(Control), MPI_BYTE, 0, tag_control, inter_, &request[0]);
+    wait(request, what);
+  }
+  MPI_Bcast(&control, sizeof(Control), MPI_BYTE, 0, local_);
+  if (control.kind != static_cast<std::int32_t>(ControlKind::window_end))
+    throw CouplingError("protocol out of step: the " + std::string(side_name(side_)) + " program expected " + what +
+                        " and received a record of kind " + std::to_string(control.kind) + " for window " +
+                        std::to_string(control.window) + " (does the partner speak protocol version " +
+                        std::to_string(protocol_major) + "?)");
+  return control;
+}
+
 void PartnerLink::receive_finalize() {
   Control control;
   if (leader()) {

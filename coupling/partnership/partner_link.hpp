@@ -41,7 +41,7 @@ enum Tag : int {
   tag_displacement = 131,
 };
 
-enum class ControlKind : std::int32_t { data = 1, finalize = 2 };
+enum class ControlKind : std::int32_t { data = 1, finalize = 2, window_end = 3 };
 
 /// The fixed-size record that opens every exchange (PROTOCOL.md, "Control").
 struct Control {
@@ -81,6 +81,9 @@ class PartnerLink {
   /// record and every rank returns it. `what` names the awaited data in errors.
   /// A finalize record where data was awaited is an error.
   Control receive_control(const std::string& what);
+  /// Collective over this program: waits for the partner's window-end record
+  /// (kind 3: its restart and stop requests); anything else is an error.
+  Control receive_window_end(const std::string& what);
   /// Collective over this program: waits for the partner's finalize record;
   /// a data record instead is an error (the partner expected more windows).
   void receive_finalize();
@@ -107,7 +110,7 @@ class PartnerLink {
 };
 
 /// The protocol version this library speaks (PROTOCOL.md, "Versioning").
-constexpr int protocol_major = 1;
+constexpr int protocol_major = 2;
 constexpr int protocol_minor = 0;
 
 }  // namespace tankfsi::coupling

@@ -2,12 +2,13 @@
 
 namespace tankfsi::coupling {
 
-WindowReportFile::WindowReportFile(const std::filesystem::path& path, double flush_interval)
-    : file_(path,
-            {"window", "iterations", "converged", "displacement_residual", "force_residual", "impulse_given_x_Ns",
-             "impulse_given_y_Ns", "impulse_given_z_Ns", "impulse_applied_x_Ns", "impulse_applied_y_Ns",
-             "impulse_applied_z_Ns", "coupling_wait_s", "coupling_work_s"},
-            flush_interval) {}
+WindowReportFile::WindowReportFile(const std::filesystem::path& path, double flush_interval,
+                                   std::optional<double> resume_time)
+    : file_(open_probe_file(path,
+                            {"window", "iterations", "converged", "displacement_residual", "force_residual",
+                             "impulse_given_x_Ns", "impulse_given_y_Ns", "impulse_given_z_Ns", "impulse_applied_x_Ns",
+                             "impulse_applied_y_Ns", "impulse_applied_z_Ns", "coupling_wait_s", "coupling_work_s"},
+                            flush_interval, resume_time)) {}
 
 void WindowReportFile::append(const WindowReport& r, const CouplingTimings& timings) {
   const double row[] = {static_cast<double>(r.window),
@@ -23,7 +24,7 @@ void WindowReportFile::append(const WindowReport& r, const CouplingTimings& timi
                         r.impulse_applied[2],
                         timings.wait,
                         timings.work};
-  file_.append(r.end_time, row);
+  file_->append(r.end_time, row);
 }
 
 }  // namespace tankfsi::coupling

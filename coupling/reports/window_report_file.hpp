@@ -5,6 +5,7 @@
 // against the impulse the structure applied (the structure side knows both).
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "common/io/probe_file.hpp"
 #include "coupling/participant.hpp"
@@ -13,12 +14,14 @@ namespace tankfsi::coupling {
 
 class WindowReportFile {
  public:
-  WindowReportFile(const std::filesystem::path& path, double flush_interval);
+  /// `resume_time`: a restart's time; the file keeps its rows up to it.
+  WindowReportFile(const std::filesystem::path& path, double flush_interval,
+                   std::optional<double> resume_time = std::nullopt);
   void append(const WindowReport& report, const CouplingTimings& timings);
-  void flush() { file_.flush(); }
+  void flush() { file_->flush(); }
 
  private:
-  ProbeFile file_;
+  std::unique_ptr<ProbeFile> file_;
 };
 
 }  // namespace tankfsi::coupling

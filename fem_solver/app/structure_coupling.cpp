@@ -18,7 +18,7 @@ void check_coupled_structure_case(const CaseConfig& config, const ShellMesh& mes
   coupling::require_step_within_window(config, "structure.time_step", settings);
 }
 
-StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& solver)
+StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& solver, const Resume* resume)
     : solver_(solver),
       participant_(coupling::Side::structure, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
@@ -58,6 +58,19 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
   owned_values_.assign(3 * owned_.size(), 0.0);
   gathered_.assign(3 * n, 0.0);
   loads_.assign(3 * n, 0.0);
+  participant_.set_restart_interval(context.config.real("output.checkpoint_interval"));
+  if (context.folder && rank == 0)
+    reports_ = std::make_unique<coupling::WindowReportFile>(
+        context.folder->path() / "probes" / "coupling.csv", context.config.real("output.field_interval"),
+        resume ? std::optional<double>(resume->state.window_start) : std::nullopt);
+  if (resume) {
+    if (resume->reference.size() != 3 * n)
+      throw std::runtime_error("restart: " + std::to_string(resume->reference.size() / 3) +
+                               " interface reference displacements for " + std::to_string(n) + " vertices");
+    reference_ = resume->reference;
+    participant_.resume(resume->state);
+    return;
+  }
   const std::vector<double> u = solver.interface_displacements();
   for (std::size_t k = 0; k < owned_.size(); ++k)
     for (std::size_t c = 0; c < 3; ++c) owned_values_[3 * k + c] = u[3 * owned_[k] + c];
@@ -75,10 +88,6 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
     solver_.balance_acceleration();
     reference_.assign(3 * n, 0.0);
   }
-
-  if (context.folder && rank == 0)
-    reports_ = std::make_unique<coupling::WindowReportFile>(context.folder->path() / "probes" / "coupling.csv",
-                                                            context.config.real("output.field_interval"));
 }
 
 void StructureCoupling::load_interface(double relative_dt) {

@@ -28,7 +28,14 @@ class StructureCoupling {
  public:
   /// Collective over both programs: handshake, interface, initial data. The
   /// solver must have its interface set.
-  StructureCoupling(ProgramContext& context, StructureSolver& solver);
+  /// `resume`: a restart's coupling state and the interface displacements
+  /// the fluid's walls start from (reference()); the solver then holds the
+  /// checkpoint's state already.
+  struct Resume {
+    const coupling::CouplingRestartState& state;
+    std::vector<double> reference;
+  };
+  StructureCoupling(ProgramContext& context, StructureSolver& solver, const Resume* resume = nullptr);
 
   [[nodiscard]] bool ongoing() const { return participant_.is_ongoing(); }
   [[nodiscard]] double max_time_step() const { return participant_.max_time_step(); }
@@ -41,6 +48,12 @@ class StructureCoupling {
   bool after_step(double dt);
   /// Collective over both programs.
   void finish();
+  /// As FluidCoupling: the agreed restart points and stop.
+  [[nodiscard]] bool restart_point_due() { return participant_.restart_point_due(); }
+  [[nodiscard]] int stop_signal() const { return participant_.stop_signal(); }
+  [[nodiscard]] const coupling::CouplingRestartState& restart_state() const { return participant_.restart_state(); }
+  /// Interface displacements (3 per vertex) the fluid's walls are at rest at.
+  [[nodiscard]] const std::vector<double>& reference() const { return reference_; }
   [[nodiscard]] nlohmann::json summary() const;
 
  private:

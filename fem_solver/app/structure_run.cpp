@@ -12,6 +12,7 @@
 #include "common/log/progress_line.hpp"
 #include "common/run/checkpoint_series.hpp"
 #include "common/run/stop_signal.hpp"
+#include "coupling/restart/restart_state_file.hpp"
 #include "fem_solver/app/structure_checkpoint.hpp"
 #include "fem_solver/analysis/modal_analysis.hpp"
 #include "fem_solver/analysis/static_analysis.hpp"
@@ -135,13 +136,19 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
   if (wetted) solver.set_interface(extract_interface(system.model().mesh, "wetted"));
   solver.prepare(c.time_step);
-  if (context.restart && context.partner != MPI_COMM_NULL)
-    throw ConfigError(Origin{"--restart", 0}, "", "restarting a coupled run is not supported yet");
   std::optional<nlohmann::json> resumed;
+  std::optional<coupling::CouplingRestartState> coupling_state;
+  std::vector<double> interface_reference;
   double checkpoint_restart_time = 0.0;
   if (context.restart) {
     resumed = read_structure_state(context.comm, *context.restart, solver);
     checkpoint_restart_time = solver.time();
+    if (context.partner != MPI_COMM_NULL) {
+      const Hdf5File file(context.comm, context.restart->path, FileMode::read);
+      coupling_state = coupling::read_restart_state(file, "/coupling", false);
+      interface_reference = file.read_rows_double("/structure/interface_reference", 0,
+                                                  file.shape("/structure/interface_reference").rows);
+    }
     context.log.info("structure: continues from t = ", solver.time(), " s, step ", solver.steps());
   }
   StructureOutput output(context, c, system, resumed ? std::optional<double>(solver.time()) : std::nullopt);
@@ -149,7 +156,9 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   std::unique_ptr<StructureCoupling> coupling;
   if (context.partner != MPI_COMM_NULL) {
     if (!wetted) throw context.config.error_at("structure", "a coupled run needs the element set 'wetted' (the interface)");
-    coupling = std::make_unique<StructureCoupling>(context, solver);
+    const StructureCoupling::Resume resume{coupling_state ? *coupling_state : coupling::CouplingRestartState{},
+                                           interface_reference};
+    coupling = std::make_unique<StructureCoupling>(context, solver, coupling_state ? &resume : nullptr);
   } else if (!resumed && context.config.text("structure.initial_state") == "equilibrium") {
     solver.start_at_equilibrium();
   }
@@ -198,6 +207,13 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
     output.flush();
     auto file = checkpoints.begin(solver.time(), context.config);
     write_structure_state(*file, solver, loop_state());
+    if (coupling) {
+      coupling::write_restart_state(*file, "/coupling", coupling->restart_state(), false);
+      int writer = 0;
+      MPI_Comm_rank(context.comm, &writer);
+      const std::vector<double> reference = writer == 0 ? coupling->reference() : std::vector<double>{};
+      file->write_distributed_1d("/structure/interface_reference", std::span<const double>(reference));
+    }
     const auto path = checkpoints.commit(std::move(file));
     context.log.info("checkpoint ", path.string(), " at t = ", solver.time(), " s");
     return path;
@@ -227,11 +243,19 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
         context.log.info("t = ", solver.time(), " s, step ", solver.steps(), ", largest displacement ",
                          solver.largest_displacement(), " m");
       }
-      // Checkpoints (alone: after any step; coupled runs do not write them yet).
-      if (!coupling) {
-        const int signal = agreed_stop_signal(context.comm);
-        const bool due = solver.time() >= next_checkpoint * (1.0 - 1e-12);
-        if (due) next_checkpoint = next_checkpoint_time(solver.time(), checkpoint_interval);
+      // Checkpoints: alone after any step; coupled at the window ends both
+      // programs agreed on (the coupling library's window-end records).
+      {
+        int signal = 0;
+        bool due = false;
+        if (coupling) {
+          due = coupling->restart_point_due();
+          signal = due ? coupling->stop_signal() : 0;
+        } else {
+          signal = agreed_stop_signal(context.comm);
+          due = solver.time() >= next_checkpoint * (1.0 - 1e-12);
+          if (due) next_checkpoint = next_checkpoint_time(solver.time(), checkpoint_interval);
+        }
         if (due || signal != 0) {
           progress.clear();
           const auto path = write_checkpoint();

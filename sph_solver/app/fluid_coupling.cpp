@@ -14,7 +14,8 @@ void check_coupled_fluid_case(const CaseConfig& config) {
     coupling::require_step_within_window(config, "fluid.time_step.value", settings);
 }
 
-FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const Eigen::Vector3d& ground_acceleration)
+FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const Eigen::Vector3d& ground_acceleration,
+                             const coupling::CouplingRestartState* resume)
     : solver_(solver),
       participant_(coupling::Side::fluid, coupling::read_coupling_settings(context.config), context.comm, context.partner,
                    coupling::case_fingerprints(context.config)),
@@ -57,8 +58,13 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
   participant_.set_own_vertices(coupled_positions);
   values_.assign(3 * coupled_.size(), 0.0);
   wall_velocity_.assign(values_.size(), 0.0);
-  write_forces(solver.present_wall_forces(ground_acceleration));
-  participant_.initialize();
+  participant_.set_restart_interval(context.config.real("output.checkpoint_interval"));
+  if (resume) {
+    participant_.resume(*resume);
+  } else {
+    write_forces(solver.present_wall_forces(ground_acceleration));
+    participant_.initialize();
+  }
   positions_ = reference_;
   velocities_.assign(reference_.size(), Eigen::Vector3d::Zero());
 }

@@ -35,7 +35,10 @@ class FluidCoupling {
   /// Collective over both programs: handshake, interface, initial data.
   /// The structure receives the fluid's forces at t = 0 as its initial load
   /// (the liquid at rest under gravity and the ground acceleration a_g(0)).
-  FluidCoupling(ProgramContext& context, FluidSolver& solver, const Eigen::Vector3d& ground_acceleration);
+  /// `resume`: a restart's coupling state; the coupling then goes on from it
+  /// (the structure from its own checkpoint of the same window).
+  FluidCoupling(ProgramContext& context, FluidSolver& solver, const Eigen::Vector3d& ground_acceleration,
+                const coupling::CouplingRestartState* resume = nullptr);
 
   [[nodiscard]] bool ongoing() const { return participant_.is_ongoing(); }
   [[nodiscard]] double time() const { return participant_.time(); }
@@ -51,6 +54,12 @@ class FluidCoupling {
   /// True when the last after_step() rolled the particles back (an implicit
   /// window to be repeated).
   [[nodiscard]] bool rolled_back() const { return rolled_back_; }
+  /// True once when the window just accepted is a restart point both
+  /// programs write a checkpoint at (Participant::restart_point_due()).
+  [[nodiscard]] bool restart_point_due() { return participant_.restart_point_due(); }
+  /// Nonzero when the programs agreed to stop there (the signal's number).
+  [[nodiscard]] int stop_signal() const { return participant_.stop_signal(); }
+  [[nodiscard]] const coupling::CouplingRestartState& restart_state() const { return participant_.restart_state(); }
   void finish();
   [[nodiscard]] nlohmann::json summary() const;
 

@@ -15,6 +15,7 @@
 #include "common/io/field_series_writer.hpp"
 #include "common/io/number_text.hpp"
 #include "common/run/stop_signal.hpp"
+#include "coupling/restart/restart_state_file.hpp"
 #include "sph_solver/app/fluid_checkpoint.hpp"
 #include "common/log/progress_line.hpp"
 #include "common/io/probe_file.hpp"
@@ -258,11 +259,14 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   FluidSolver solver(context.comm, c.model, std::move(c.walls), std::move(c.particles), c.domain, c.ppe_options,
                      &context.timers);
   solver.rebalance_interval = c.rebalance_interval;
-  if (context.restart && context.partner != MPI_COMM_NULL)
-    throw ConfigError(Origin{"--restart", 0}, "", "restarting a coupled run is not supported yet");
   std::optional<LoopState> resumed;
+  std::optional<coupling::CouplingRestartState> coupling_state;
   if (context.restart) {
     const FluidRestart restart = read_fluid_state(context.comm, *context.restart);
+    if (context.partner != MPI_COMM_NULL) {
+      const Hdf5File file(context.comm, context.restart->path, FileMode::read);
+      coupling_state = coupling::read_restart_state(file, "/coupling", true);
+    }
     solver.resume(restart.state, restart.cuts);
     resumed = LoopState::from_json(restart.run_state);
     context.log.info("fluid: continues from t = ", resumed->t, " s, step ", resumed->stats.steps,
@@ -272,7 +276,9 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
                    " wall triangles, h = ", c.model.smoothing_length, " m, kernel ", kernel_name(c.model.kernel));
   // With a partner program, the walls on the structure's wetted surface move with it.
   std::unique_ptr<FluidCoupling> coupling;
-  if (context.partner != MPI_COMM_NULL) coupling = std::make_unique<FluidCoupling>(context, solver, motion.acceleration(0.0));
+  if (context.partner != MPI_COMM_NULL)
+    coupling = std::make_unique<FluidCoupling>(context, solver, motion.acceleration(0.0),
+                                               coupling_state ? &*coupling_state : nullptr);
   Outputs outputs(context, c, solver, resumed ? std::optional<double>(resumed->t) : std::nullopt);
   const double checkpoint_interval = context.config.real("output.checkpoint_interval");
   LoopState loop;
@@ -300,6 +306,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     outputs.flush();
     auto file = checkpoints.begin(t, context.config);
     write_fluid_state(*file, solver, loop.to_json());
+    if (coupling) coupling::write_restart_state(*file, "/coupling", coupling->restart_state(), true);
     const auto path = checkpoints.commit(std::move(file));
     context.log.info("checkpoint ", path.string(), " at t = ", t, " s");
     return path;
@@ -358,11 +365,19 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
         context.log.info("t = ", t, " s, step ", stats.steps, ", dt = ", dt, " s, PPE ", last.ppe_iterations,
                          " iterations, max |v| = ", last.max_speed, " m/s");
       }
-      // Checkpoints (alone: after any step; coupled runs do not write them yet).
-      if (!coupling) {
-        const int signal = agreed_stop_signal(context.comm);
-        const bool due = t >= loop.next_checkpoint * (1.0 - 1e-12);
-        if (due) loop.next_checkpoint = next_checkpoint_time(t, checkpoint_interval);
+      // Checkpoints: alone after any step; coupled at the window ends both
+      // programs agreed on (the coupling library's window-end records).
+      {
+        int signal = 0;
+        bool due = false;
+        if (coupling) {
+          due = coupling->restart_point_due();
+          signal = due ? coupling->stop_signal() : 0;
+        } else {
+          signal = agreed_stop_signal(context.comm);
+          due = t >= loop.next_checkpoint * (1.0 - 1e-12);
+          if (due) loop.next_checkpoint = next_checkpoint_time(t, checkpoint_interval);
+        }
         if (due || signal != 0) {
           progress.clear();
           const auto path = write_checkpoint();

@@ -64,6 +64,7 @@ TEST_CASE("Hdf5File reads back any slice of rows and numeric attributes", "[chec
     std::vector<double> rows;
     for (int k = 0; k <= rank; ++k) rows.insert(rows.end(), {double(rank), 10.0 * rank + k});
     file.write_distributed_2d("/a/rows", rows, 2);
+    file.write_distributed_1d("/a/empty", std::span<const double>());
     file.write_attribute("/a", "count", std::int64_t{42});
     file.write_attribute("/a", "time", 0.1 + 0.2);
   }
@@ -85,6 +86,8 @@ TEST_CASE("Hdf5File reads back any slice of rows and numeric attributes", "[chec
     CHECK(last[2 * static_cast<std::size_t>(k) + 1] == 10.0 * (size - 1) + k);
   }
   CHECK(file.read_rows_double("/a/rows", 0, 0).empty());
+  CHECK(file.shape("/a/empty").rows == 0);
+  CHECK(file.read_rows_double("/a/empty", 0, 0).empty());  // no storage behind it
   CHECK_THROWS_AS(file.read_rows_double("/a/rows", total - 1, 2), std::invalid_argument);
 }
 
