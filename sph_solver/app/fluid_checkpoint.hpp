@@ -20,6 +20,9 @@
 // tolerance.
 #include <nlohmann/json.hpp>
 
+#include <optional>
+#include <vector>
+
 #include "common/io/hdf5_file.hpp"
 #include "common/run/checkpoint_series.hpp"
 #include "sph_solver/isph/fluid_solver.hpp"
@@ -31,7 +34,7 @@ void write_fluid_state(Hdf5File& file, const FluidSolver& solver, const nlohmann
 
 struct FluidRestart {
   FluidSolver::Checkpoint state;  ///< this rank's particles and the counters
-  std::vector<double> cuts;       ///< empty when the rank count changed
+  std::optional<std::vector<double>> cuts;  ///< none when the rank count changed
   nlohmann::json run_state;
 };
 

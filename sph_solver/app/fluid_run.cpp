@@ -270,7 +270,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     solver.resume(restart.state, restart.cuts);
     resumed = LoopState::from_json(restart.run_state);
     context.log.info("fluid: continues from t = ", resumed->t, " s, step ", resumed->stats.steps,
-                     restart.cuts.empty() ? " (particles balanced anew over this run's ranks)" : "");
+                     restart.cuts ? "" : " (particles balanced anew over this run's ranks)");
   }
   context.log.info("fluid: ", solver.global_particle_count(), " particles, ", solver.walls().mesh().triangle_count(),
                    " wall triangles, h = ", c.model.smoothing_length, " m, kernel ", kernel_name(c.model.kernel));

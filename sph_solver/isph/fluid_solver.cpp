@@ -200,12 +200,12 @@ void FluidSolver::redistribute() {
   }
 }
 
-void FluidSolver::resume(const Checkpoint& state, std::span<const double> cuts) {
+void FluidSolver::resume(const Checkpoint& state, const std::optional<std::vector<double>>& cuts) {
   restore(state);
-  if (cuts.empty()) {
-    rebalance();
+  if (cuts) {
+    decomposition_.restore_cuts(*cuts);  // none on one rank: the particles stay in their order
   } else {
-    decomposition_.restore_cuts(cuts);
+    rebalance();
   }
   predicted_density_.assign(particles_.size(), std::numeric_limits<double>::quiet_NaN());
   free_surface_flags_ = predicted_density_;

@@ -36,6 +36,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -117,9 +118,9 @@ class FluidSolver {
   /// What a restart puts back (sph_solver/app/fluid_checkpoint.hpp): this
   /// rank's particles and counters; `cuts` the decomposition's cuts when the
   /// particles are each rank's own of a run on as many ranks (the state is
-  /// then the one written, bit for bit), empty when they are any share of
+  /// then the one written, bit for bit), none when they are any share of
   /// them (another rank count: balanced and migrated anew). Collective.
-  void resume(const Checkpoint& state, std::span<const double> cuts);
+  void resume(const Checkpoint& state, const std::optional<std::vector<double>>& cuts);
   [[nodiscard]] std::vector<double> decomposition_cuts() const { return decomposition_.cuts(); }
   [[nodiscard]] long long steps() const { return steps_; }
 

@@ -12,7 +12,8 @@ nothing (the straight and the stopped runs) or by --restart (the restart); an
 MPMD line (PROG_A ... : PROG_B ...) names them in each part.
 
 1. The straight run; its wall time W.
-2. The same job into another folder, sent the signal at `at` x W: to every
+2. The same job into another folder, sent the signal at `at` x W (or, with
+   --kill-while-writing, SIGKILLed while it writes a checkpoint): to every
    process the launcher started (`procs`, as a batch scheduler does), or to the
    launcher itself (`launcher`, which forwards SIGUSR1 to them). It must stop
    with a non-zero status, say "stopped by SIG...", and leave a checkpoint.
@@ -144,6 +145,9 @@ def main():
     parser.add_argument("--at", type=float, default=0.45)
     parser.add_argument("--tolerance", type=float, default=0.0)
     parser.add_argument("--timeout", type=float, default=900)
+    parser.add_argument("--kill-while-writing", action="store_true",
+                        help="instead of the signal: SIGKILL every process of the job as soon as a checkpoint "
+                             "is being written (a .partial file appears); the restart must take the last complete one")
     parser.add_argument("--refused-ranks", type=int,
                         help="first try a restart on this many ranks: it must be refused (exit 2, message "
                              "naming the rank counts) and change no file of the run")
@@ -163,6 +167,10 @@ def main():
 
         process = subprocess.Popen(command_for(job, args.ranks, stopped, False), stdout=subprocess.PIPE,
                                    stderr=subprocess.STDOUT, text=True)
+        if args.kill_while_writing:
+            kill_while_writing(process, stopped / "checkpoints", args.timeout)
+            output, _ = process.communicate(timeout=args.timeout)
+            return finish_after_kill(args, job, straight, stopped, restart_ranks)
         time.sleep(args.at * wall)
         number = getattr(signal, "SIG" + args.signal)
         targets = [process.pid] if args.target == "launcher" else descendants(process.pid)
@@ -202,7 +210,10 @@ def main():
         if result.returncode != 0:
             raise SystemExit(f"FAIL: the restart exited {result.returncode}\n{result.stdout}\n{result.stderr}")
 
-        files, worst = compare_probes(straight, stopped, args.tolerance)
+        try:
+            files, worst = compare_probes(straight, stopped, args.tolerance)
+        except SystemExit as failure:
+            raise SystemExit(f"{failure} [after: {stop_line.strip()}]")
         a, b = series_times(straight), series_times(stopped)
         same_series = a == b or (args.tolerance > 0.0 and a.keys() == b.keys() and all(
             len(a[k]) == len(b[k]) and np.allclose(np.array(a[k], float), np.array(b[k], float), rtol=args.tolerance)
@@ -213,6 +224,56 @@ def main():
         print(f"PASS: {stop_line.strip()}; restarted on {restart_ranks} rank(s): {files} probe files agree "
               f"{agreement}; {sum(len(t) for t in a.values())} snapshots in {len(a)} series, as straight")
     return 0
+
+
+def kill_while_writing(process, folder, timeout):
+    """SIGKILLs the job's processes the moment a checkpoint is being written
+    (after at least one complete one, so that there is one to restart from)."""
+    deadline = time.monotonic() + timeout
+    targets = []
+    while time.monotonic() < deadline and process.poll() is None:
+        try:
+            names = [entry.name for entry in os_scandir(folder)]
+        except FileNotFoundError:
+            names = []
+        if not targets:
+            if any(n.endswith(".h5") for n in names):
+                targets = descendants(process.pid)  # found once: the kill must not wait for pgrep
+            continue
+        if any(n.endswith(".partial") for n in names):
+            for pid in targets:
+                try:
+                    os_kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+            return
+        time.sleep(0.0002)
+    raise SystemExit("FAIL: no checkpoint was caught being written (the job ended first)")
+
+
+def finish_after_kill(args, job, straight, stopped, restart_ranks):
+    partial = sorted(p.name for p in (stopped / "checkpoints").glob("*.partial"))
+    complete = sorted(p.name for p in (stopped / "checkpoints").glob("*.h5"))
+    if not partial:
+        raise SystemExit(f"FAIL: killed while writing, yet no .partial file is left (checkpoints {complete})")
+    result = subprocess.run(command_for(job, restart_ranks, stopped, True), capture_output=True, text=True,
+                            timeout=args.timeout)
+    if result.returncode != 0:
+        raise SystemExit(f"FAIL: the restart after the kill exited {result.returncode}\n{result.stdout}\n{result.stderr}")
+    restart_line = next((line for line in result.stdout.splitlines() if "restart from" in line), "")
+    files, worst = compare_probes(straight, stopped, args.tolerance)
+    a, b = series_times(straight), series_times(stopped)
+    if a != b:
+        raise SystemExit(f"FAIL: field series differ: straight {a}, restarted {b}")
+    print(f"PASS: killed while writing {partial[0]} (complete: {', '.join(complete)}); "
+          f"{restart_line.strip()}; {files} probe files and {sum(len(t) for t in a.values())} snapshots agree "
+          f"{'bit for bit' if args.tolerance == 0.0 else f'to {worst:.3g}'} with the straight run")
+    return 0
+
+
+def os_scandir(folder):
+    import os
+    return os.scandir(folder)
 
 
 def os_kill(pid, number):
