@@ -102,8 +102,18 @@ double next_checkpoint_time(double t, double interval) {
 }
 
 std::vector<std::string> restart_case_differences(const std::string& written_yaml, const std::string& current_yaml) {
-  const YAML::Node written = YAML::Load(written_yaml);
-  const YAML::Node current = YAML::Load(current_yaml);
+  YAML::Node written = YAML::Load(written_yaml);
+  YAML::Node current = YAML::Load(current_yaml);
+  // How the linear systems are solved and how long a partner is awaited do
+  // not change the state: a restart may change them (a failed PPE, say).
+  for (YAML::Node* node : {&written, &current}) {
+    if ((*node)["fluid"] && (*node)["fluid"]["ppe"]) {
+      (*node)["fluid"]["ppe"].remove("solver_options");
+      if ((*node)["fluid"]["ppe"].size() == 0) (*node)["fluid"].remove("ppe");
+    }
+    if ((*node)["structure"]) (*node)["structure"].remove("solver_options");
+    if ((*node)["coupling"]) (*node)["coupling"].remove("timeout");
+  }
   std::set<std::string> keys;
   for (const auto& node : {written, current})
     for (const auto& entry : node) keys.insert(entry.first.as<std::string>());
@@ -168,7 +178,7 @@ RestartPoint find_restart_point(MPI_Comm comm, const fs::path& run_folder, const
       std::string keys;
       for (const auto& k : differences) keys += (keys.empty() ? "" : ", ") + k;
       throw ConfigError(restart_origin, "", point.path.string() + " was written for another case: it differs in " +
-                                                keys + " (a restart may change only title, output and end_time)");
+                                                keys + " (a restart may change only title, output, end_time and solver options)");
     }
   } catch (const ConfigError&) {
     throw;

@@ -63,13 +63,15 @@ struct RestartPoint {
 /// "latest" (or empty) — the highest number that every program that ran in
 /// the folder (its .claims) has a checkpoint of; a number; or a path to one
 /// of the program's checkpoints. Checks that it was written for a case that
-/// differs from `config` in nothing but title, output and end_time. Throws
+/// differs from `config` in nothing but restart_case_differences() leaves out. Throws
 /// ConfigError (origin "--restart") naming what is missing or different.
 RestartPoint find_restart_point(MPI_Comm comm, const std::filesystem::path& run_folder, const std::string& program,
                                 const std::string& spec, const CaseConfig& config);
 
 /// The keys (sections, or top-level keys) in which two resolved cases
-/// differ, leaving out title, output and end_time.
+/// differ, leaving out title, output and end_time, and what does not change
+/// the state: fluid.ppe.solver_options, structure.solver_options,
+/// coupling.timeout.
 std::vector<std::string> restart_case_differences(const std::string& written_yaml, const std::string& current_yaml);
 
 }  // namespace tankfsi

@@ -259,19 +259,31 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
         if (due || signal != 0) {
           progress.clear();
           const auto path = write_checkpoint();
-          if (signal != 0)
+          if (signal != 0) {
+            if (coupling) coupling->finish();  // both checkpoints are complete before either program ends
             throw StopRequested(std::string("stopped by ") + stop_signal_name(signal) + " at t = " +
                                     number_text(solver.time()) + " s; continue with --restart (checkpoint " +
                                     path.string() + ")",
                                 path);
+          }
         }
       }
     }
   } catch (const std::runtime_error& e) {
-    // A failed step leaves the solver at the last good state.
+    // A failed step leaves the solver at the last good state: alone, it is
+    // also a checkpoint (a coupled run keeps the pair's last common one).
     output.flush();
     output.write_fields(solver.time() + 1e-9, solver.displacement(), solver.velocity());
-    throw std::runtime_error(std::string(e.what()) + " — the last good state is the final snapshot of structure.xdmf");
+    std::string saved = " is the final snapshot of structure.xdmf";
+    if (!coupling) {
+      try {
+        saved += " and checkpoint " + write_checkpoint().string();
+      } catch (const std::runtime_error& failure) {
+        saved += " (no checkpoint: " + std::string(failure.what()) + ")";
+      }
+    }
+    throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + number_text(solver.time()) +
+                             " s)" + saved);
   }
   // The end state: a later run may go on from it (a longer end_time).
   if (!coupling && checkpoint_time != solver.time()) write_checkpoint();

@@ -312,7 +312,10 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     return path;
   };
   const double end = c.end_time;
-  Particles last_good = solver.particles();
+  // The state before the step under way: what a failed step leaves as the final snapshot and checkpoint.
+  FluidSolver::Checkpoint last_good;
+  solver.save(last_good);
+  LoopState loop_good = loop;
   int rank = 0;
   MPI_Comm_rank(context.comm, &rank);
   ProgressLine progress("sph_solver", end, rank == 0 && ProgressLine::on_terminal());
@@ -337,7 +340,8 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       // from 1e-3 to 3e-2 m/s). With a partner the window's end is the end to meet.
       const double remaining = coupling ? coupling->max_time_step() : end - t;
       if (remaining < 2.0 * dt) dt = remaining > dt ? 0.5 * remaining : remaining;
-      last_good = solver.particles();
+      solver.save(last_good);
+      loop_good = loop;
       if (coupling) coupling->before_step(dt);
       last = solver.step(t, dt, motion.acceleration(t + 0.5 * dt));
       t += dt;
@@ -381,18 +385,33 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
         if (due || signal != 0) {
           progress.clear();
           const auto path = write_checkpoint();
-          if (signal != 0)
+          if (signal != 0) {
+            if (coupling) coupling->finish();  // both checkpoints are complete before either program ends
             throw StopRequested(std::string("stopped by ") + stop_signal_name(signal) + " at t = " + number_text(t) +
                                     " s; continue with --restart (checkpoint " + path.string() + ")",
                                 path);
+          }
         }
       }
     }
   } catch (const std::runtime_error& e) {
+    // The error is collective (the solver's checks reduce over the ranks), so
+    // every rank is here and may write. Alone, the last good state is also a
+    // checkpoint to go on from (with a smaller step, say); a coupled run keeps
+    // the pair's last common checkpoint instead.
+    loop = loop_good;
+    solver.restore(last_good);
     outputs.flush();
-    outputs.snapshot(t + 1e-9, last_good, {}, {});
-    throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + std::to_string(t) +
-                             " s) is the final snapshot of fluid.xdmf");
+    outputs.snapshot(t + 1e-9, solver.particles(), {}, {});
+    std::string saved = " is the final snapshot of fluid.xdmf";
+    if (!coupling) {
+      try {
+        saved += " and checkpoint " + write_checkpoint().string();
+      } catch (const std::runtime_error& failure) {
+        saved += " (no checkpoint: " + std::string(failure.what()) + ")";
+      }
+    }
+    throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + number_text(t) + " s)" + saved);
   }
   progress.clear();
   outputs.flush();

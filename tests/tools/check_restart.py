@@ -148,6 +148,10 @@ def main():
     parser.add_argument("--kill-while-writing", action="store_true",
                         help="instead of the signal: SIGKILL every process of the job as soon as a checkpoint "
                              "is being written (a .partial file appears); the restart must take the last complete one")
+    parser.add_argument("--fail-with", action="append", default=[],
+                        help="instead of the signal: run the job with these extra arguments, which make it fail; "
+                             "it must leave its last good state as a checkpoint, from which the job without them "
+                             "continues")
     parser.add_argument("--refused-ranks", type=int,
                         help="first try a restart on this many ranks: it must be refused (exit 2, message "
                              "naming the rank counts) and change no file of the run")
@@ -165,6 +169,8 @@ def main():
         if result.returncode != 0:
             raise SystemExit(f"FAIL: the straight run exited {result.returncode}\n{result.stdout}\n{result.stderr}")
 
+        if args.fail_with:
+            return finish_after_failure(args, job, straight, stopped, restart_ranks)
         process = subprocess.Popen(command_for(job, args.ranks, stopped, False), stdout=subprocess.PIPE,
                                    stderr=subprocess.STDOUT, text=True)
         if args.kill_while_writing:
@@ -268,6 +274,33 @@ def finish_after_kill(args, job, straight, stopped, restart_ranks):
     print(f"PASS: killed while writing {partial[0]} (complete: {', '.join(complete)}); "
           f"{restart_line.strip()}; {files} probe files and {sum(len(t) for t in a.values())} snapshots agree "
           f"{'bit for bit' if args.tolerance == 0.0 else f'to {worst:.3g}'} with the straight run")
+    return 0
+
+
+def finish_after_failure(args, job, straight, stopped, restart_ranks):
+    failing = command_for(job, args.ranks, stopped, False)
+    # The extra arguments go to the first program of the line (before any ':').
+    cut = failing.index(":") if ":" in failing else len(failing)
+    failing = failing[:cut] + args.fail_with + failing[cut:]
+    result = subprocess.run(failing, capture_output=True, text=True, timeout=args.timeout)
+    text = result.stdout + result.stderr
+    if result.returncode == 0 or "the last good state" not in text or "and checkpoint" not in text:
+        raise SystemExit(f"FAIL: the failing run exited {result.returncode} without naming its last good state's "
+                         f"checkpoint\n{text}")
+    message = next(line for line in text.splitlines() if "the last good state" in line)
+    result = subprocess.run(command_for(job, restart_ranks, stopped, True), capture_output=True, text=True,
+                            timeout=args.timeout)
+    if result.returncode != 0:
+        raise SystemExit(f"FAIL: the restart after the failure exited {result.returncode}\n{result.stdout}\n"
+                         f"{result.stderr}")
+    files, worst = compare_probes(straight, stopped, args.tolerance)
+    a, b = series_times(straight), series_times(stopped)
+    # The failed run's final snapshot (the last good state, just after it) stays in the series only until the
+    # restart drops what follows the checkpoint: the series must then be the straight run's.
+    if a != b:
+        raise SystemExit(f"FAIL: field series differ: straight {a}, restarted {b}")
+    print(f"PASS: {message.strip()[:300]}; the restart from it: {files} probe files and "
+          f"{sum(len(t) for t in a.values())} snapshots agree bit for bit with the straight run")
     return 0
 
 

@@ -157,6 +157,9 @@ TEST_CASE("case differences name the sections, leaving out title, output and end
   CHECK(restart_case_differences(a, a).empty());
   CHECK(restart_case_differences(a, b) == std::vector<std::string>{"fluid"});
   CHECK(restart_case_differences(a, "fluid:\n  spacing: 0.02\n") == std::vector<std::string>{"structure"});
+  const std::string solved = "fluid:\n  spacing: 0.02\n  ppe:\n    solver_options: -ppe_ksp_rtol 1e-12\nstructure:\n  k: 1\n"
+                             "  solver_options: -shell_pc_type lu\n";
+  CHECK(restart_case_differences(a, solved).empty());
 }
 
 TEST_CASE("a probe file continued at a restart keeps its rows up to the restart time", "[checkpoint]") {
