@@ -27,6 +27,11 @@ std::vector<KeySpec> fluid_keys() {
           .default_is("0.2").above(0).at_most(1).only_when("fluid.time_step.mode", {"adaptive"}),
       real_key("fluid.time_step.max", "Largest time step the adaptive controller may take.")
           .unit_is("s").default_is("0.001").above(0).only_when("fluid.time_step.mode", {"adaptive"}),
+      real_key("fluid.time_step.breach_courant",
+               "A step after which |v|max dt / h exceeds this Courant number stops the run as diverging "
+               "(CFL breach: a particle crossed more of its kernel support than the neighbour search and "
+               "the halo allow for); the last good state is kept.")
+          .default_is("1").above(0),
       real_key("fluid.ppe.density_error_weight",
                "Weight gamma of the density-error part of the pressure Poisson source term.")
           .default_is("0.01").at_least(0).at_most(1),

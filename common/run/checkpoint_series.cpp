@@ -104,9 +104,11 @@ double next_checkpoint_time(double t, double interval) {
 std::vector<std::string> restart_case_differences(const std::string& written_yaml, const std::string& current_yaml) {
   YAML::Node written = YAML::Load(written_yaml);
   YAML::Node current = YAML::Load(current_yaml);
-  // How the linear systems are solved and how long a partner is awaited do
-  // not change the state: a restart may change them (a failed PPE, say).
+  // How the linear systems are solved, when a run counts as diverging and how
+  // long a partner is awaited do not change the state: a restart may change
+  // them (after a failed PPE, say).
   for (YAML::Node* node : {&written, &current}) {
+    if ((*node)["fluid"] && (*node)["fluid"]["time_step"]) (*node)["fluid"]["time_step"].remove("breach_courant");
     if ((*node)["fluid"] && (*node)["fluid"]["ppe"]) {
       (*node)["fluid"]["ppe"].remove("solver_options");
       if ((*node)["fluid"]["ppe"].size() == 0) (*node)["fluid"].remove("ppe");

@@ -70,8 +70,8 @@ RestartPoint find_restart_point(MPI_Comm comm, const std::filesystem::path& run_
 
 /// The keys (sections, or top-level keys) in which two resolved cases
 /// differ, leaving out title, output and end_time, and what does not change
-/// the state: fluid.ppe.solver_options, structure.solver_options,
-/// coupling.timeout.
+/// the state: fluid.ppe.solver_options, fluid.time_step.breach_courant,
+/// structure.solver_options, coupling.timeout.
 std::vector<std::string> restart_case_differences(const std::string& written_yaml, const std::string& current_yaml);
 
 }  // namespace tankfsi

@@ -250,6 +250,7 @@ FluidCase read_fluid_case(const CaseConfig& config) {
     if (!c.domain.contains(x)) throw config.error_at("fluid.domain", "the initial liquid is not inside the domain");
   c.ppe_options = config.text("fluid.ppe.solver_options");
   c.adaptive_time_step = config.text("fluid.time_step.mode") == "adaptive";
+  c.breach_courant = config.real("fluid.time_step.breach_courant");
   if (c.adaptive_time_step) {
     c.cfl_number = config.real("fluid.time_step.cfl");
     c.max_time_step = config.real("fluid.time_step.max");

@@ -28,6 +28,7 @@ struct FluidCase {
   bool adaptive_time_step = true;
   double fixed_time_step = 0.0;
   double cfl_number = 0.2;
+  double breach_courant = 1.0;  ///< fluid.time_step.breach_courant
   double max_time_step = 0.0;
   double end_time = 0.0;
   double field_interval = 0.0;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "common/config/config_error.hpp"
@@ -344,6 +345,18 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       loop_good = loop;
       if (coupling) coupling->before_step(dt);
       last = solver.step(t, dt, motion.acceleration(t + 0.5 * dt));
+      // CFL breach: the step was too long for the speed it reached.
+      if (const double courant = realised_courant(c.model, last.max_speed, dt); courant > c.breach_courant) {
+        const auto fastest = solver.fastest_particle();
+        std::ostringstream where;
+        where << "particle " << fastest.id << " at (" << fastest.position.x() << ", " << fastest.position.y() << ", "
+              << fastest.position.z() << ") m";
+        throw std::runtime_error("step " + std::to_string(solver.steps()) + " at t = " + number_text(t) +
+                                 " s: CFL breach: the largest speed " + number_text(last.max_speed) +
+                                 " m/s after a step of " + number_text(dt) + " s is a Courant number |v| dt / h = " +
+                                 number_text(courant) + " above fluid.time_step.breach_courant = " +
+                                 number_text(c.breach_courant) + " (" + where.str() + ")");
+      }
       t += dt;
       stats.add(last, c.adaptive_time_step ? limits.limiting() : "fixed");  // every step computed
       const bool window_done = coupling ? coupling->after_step(dt) : true;

@@ -146,6 +146,26 @@ StageTimers::Scope FluidSolver::stage(const std::string& name) { return timers_-
 
 double FluidSolver::max_speed() const { return global_max(comm_, largest_norm(particles_.velocity)); }
 
+FluidSolver::FastestParticle FluidSolver::fastest_particle() const {
+  Offender local;
+  double fastest = -1.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const double speed = particles_.velocity[i].norm();
+    if (speed > fastest || (speed == fastest && particles_.id[i] < local.id)) {
+      fastest = speed;
+      local.id = particles_.id[i];
+      local.to = particles_.position[i];
+      local.velocity = particles_.velocity[i];
+    }
+  }
+  // Only the fastest over all ranks is an offender: the others drop theirs.
+  const double largest = global_max(comm_, fastest);
+  const bool mine = local.id >= 0 && fastest == largest;
+  if (!mine) local.id = -1;
+  const Offender all = first_offender(comm_, local, mine ? 1 : 0);
+  return {all.id, all.to, all.velocity};
+}
+
 double FluidSolver::max_pressure() const {
   double largest = 0.0;
   for (const double p : particles_.pressure) largest = std::max(largest, std::abs(p));

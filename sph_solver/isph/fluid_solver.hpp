@@ -124,6 +124,14 @@ class FluidSolver {
   [[nodiscard]] std::vector<double> decomposition_cuts() const { return decomposition_.cuts(); }
   [[nodiscard]] long long steps() const { return steps_; }
 
+  /// Collective: the fastest particle over all ranks (the lowest id among equals).
+  struct FastestParticle {
+    std::int64_t id = -1;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  };
+  [[nodiscard]] FastestParticle fastest_particle() const;
+
   /// Collective: the largest speed over all ranks.
   [[nodiscard]] double max_speed() const;
   /// Collective: the largest |P| of the particles over all ranks.

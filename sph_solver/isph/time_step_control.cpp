@@ -32,4 +32,8 @@ std::string TimeStepLimits::limiting() const {
   return "maximum";
 }
 
+double realised_courant(const FluidModel& model, double max_speed, double dt) {
+  return max_speed * dt / model.smoothing_length;
+}
+
 }  // namespace tankfsi::sph

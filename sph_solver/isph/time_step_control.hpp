@@ -43,4 +43,8 @@ inline constexpr double pressure_step_coefficient = 0.5;
 [[nodiscard]] TimeStepLimits time_step_limits(const FluidModel& model, double cfl_number, double maximum,
                                               double max_speed, double body_force, double max_pressure);
 
+/// The Courant number |v|max dt / h a step of dt reached, with the largest
+/// speed at its end.
+[[nodiscard]] double realised_courant(const FluidModel& model, double max_speed, double dt);
+
 }  // namespace tankfsi::sph

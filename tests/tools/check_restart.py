@@ -299,7 +299,7 @@ def finish_after_failure(args, job, straight, stopped, restart_ranks):
     # restart drops what follows the checkpoint: the series must then be the straight run's.
     if a != b:
         raise SystemExit(f"FAIL: field series differ: straight {a}, restarted {b}")
-    print(f"PASS: {message.strip()[:300]}; the restart from it: {files} probe files and "
+    print(f"PASS: {message.strip()[:400]}; the restart from it: {files} probe files and "
           f"{sum(len(t) for t in a.values())} snapshots agree bit for bit with the straight run")
     return 0
 
