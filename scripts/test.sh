@@ -3,6 +3,8 @@
 # default, "all":
 #   release  optimised build, labels unit, integration, validation
 #   asan     AddressSanitizer + UndefinedBehaviorSanitizer build, labels unit, integration
+#            but not 'long' (restart runs whose code paths the shorter restart tests
+#            under the sanitizers run too; each takes minutes instrumented)
 #   fuzz     clang libFuzzer targets of the file readers, 20 s each (label fuzz)
 # Usage: scripts/test.sh [all|release|debug|asan|fuzz] [ctest args...]
 set -euo pipefail
@@ -17,6 +19,12 @@ labels_of() {
     *) echo "scripts/test.sh: unknown preset '$1' (all, release, debug, asan, fuzz)" >&2; exit 2 ;;
   esac
 }
+excluded_of() {
+  case $1 in
+    asan) echo 'long' ;;
+    *) echo '' ;;
+  esac
+}
 presets=("$choice")
 [[ "$choice" == all ]] && presets=(release asan fuzz)
 for preset in "${presets[@]}"; do labels_of "$preset" >/dev/null; done
@@ -25,6 +33,7 @@ cd "$repo_root"
 for preset in "${presets[@]}"; do
   echo "== $preset: build"
   bash "$repo_root/scripts/build.sh" "$preset"
-  echo "== $preset: tests ($(labels_of "$preset"))"
-  ctest --preset "$preset" -j "$jobs" -L "$(labels_of "$preset")" "$@"
+  excluded=$(excluded_of "$preset")
+  echo "== $preset: tests ($(labels_of "$preset")${excluded:+, not $excluded})"
+  ctest --preset "$preset" -j "$jobs" -L "$(labels_of "$preset")" ${excluded:+-LE "$excluded"} "$@"
 done

@@ -100,6 +100,31 @@ bool exists_on_rank0(MPI_Comm comm, const std::filesystem::path& path) {
   return exists != 0;
 }
 
+/// A collective transfer's row selection: rows [first, first + count) of the
+/// file's dataset and the memory block of `count` rows; a rank without rows
+/// still takes part, selecting nothing. Returns the memory space.
+Handle select_rows(const Checked& checked, hid_t file_space, int dataset_rank, std::int64_t first,
+                   std::int64_t count, std::size_t columns) {
+  const hsize_t local_dims[2] = {static_cast<hsize_t>(count), columns};
+  auto memory_space = checked.open(H5Screate_simple(dataset_rank, local_dims, nullptr), H5Sclose, "H5Screate_simple");
+  if (count > 0) {
+    const hsize_t start[2] = {static_cast<hsize_t>(first), 0};
+    checked.status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, local_dims, nullptr),
+                   "H5Sselect_hyperslab");
+  } else {
+    checked.status(H5Sselect_none(file_space), "H5Sselect_none");
+    checked.status(H5Sselect_none(memory_space.get()), "H5Sselect_none");
+  }
+  return memory_space;
+}
+
+/// Transfer properties of every read and write: collective MPI-IO.
+Handle collective_transfer(const Checked& checked) {
+  auto dxpl = checked.open(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate(H5P_DATASET_XFER)");
+  checked.status(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  return dxpl;
+}
+
 }  // namespace
 
 RowBlock rank_order_rows(MPI_Comm comm, std::int64_t local_rows) {
@@ -215,18 +240,9 @@ void Hdf5File::read_rows(const std::string& dataset, Element element, std::int64
   const auto handle = checked.open(H5Dopen2(file_, dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2");
   const auto file_space = checked.open(H5Dget_space(handle.get()), H5Sclose, "H5Dget_space");
   const int rank = checked.status(H5Sget_simple_extent_ndims(file_space.get()), "H5Sget_simple_extent_ndims");
-  const hsize_t local_dims[2] = {static_cast<hsize_t>(count), static_cast<hsize_t>(whole.columns)};
-  const auto memory_space = checked.open(H5Screate_simple(rank, local_dims, nullptr), H5Sclose, "H5Screate_simple");
-  if (count > 0) {
-    const hsize_t start[2] = {static_cast<hsize_t>(first), 0};
-    checked.status(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, local_dims, nullptr),
-                   "H5Sselect_hyperslab");
-  } else {
-    checked.status(H5Sselect_none(file_space.get()), "H5Sselect_none");
-    checked.status(H5Sselect_none(memory_space.get()), "H5Sselect_none");
-  }
-  const auto dxpl = checked.open(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate(H5P_DATASET_XFER)");
-  checked.status(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  const auto memory_space =
+      select_rows(checked, file_space.get(), rank, first, count, static_cast<std::size_t>(whole.columns));
+  const auto dxpl = collective_transfer(checked);
   static std::int64_t no_rows = 0;
   const hid_t memory_type = element == Element::float64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
   checked.status(H5Dread(handle.get(), memory_type, memory_space.get(), file_space.get(), dxpl.get(),
@@ -276,21 +292,8 @@ RowBlock Hdf5File::write_distributed(const std::string& dataset, Element element
   // An empty dataset has no storage to write to (HDF5 1.10 fails on the attempt): creating it is all.
   if (block.total == 0) return block;
 
-  const hsize_t local_dims[2] = {static_cast<hsize_t>(block.local), columns};
-  const auto memory_space =
-      checked.open(H5Screate_simple(dataset_rank, local_dims, nullptr), H5Sclose, "H5Screate_simple");
-  if (block.local > 0) {
-    const hsize_t start[2] = {static_cast<hsize_t>(block.first), 0};
-    checked.status(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, local_dims, nullptr),
-                   "H5Sselect_hyperslab");
-  } else {
-    // A rank without rows still takes part in the collective write, selecting nothing.
-    checked.status(H5Sselect_none(file_space.get()), "H5Sselect_none");
-    checked.status(H5Sselect_none(memory_space.get()), "H5Sselect_none");
-  }
-
-  const auto dxpl = checked.open(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate(H5P_DATASET_XFER)");
-  checked.status(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  const auto memory_space = select_rows(checked, file_space.get(), dataset_rank, block.first, block.local, columns);
+  const auto dxpl = collective_transfer(checked);
   // An empty std::span may hold a null pointer; HDF5 wants a buffer even when it reads none of it.
   static const std::int64_t no_rows = 0;
   const void* buffer = local_data != nullptr ? local_data : &no_rows;

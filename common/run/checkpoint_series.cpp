@@ -14,6 +14,7 @@
 #include "common/config/config_error.hpp"
 #include "common/parallel/collective.hpp"
 #include "common/run/provenance.hpp"
+#include "common/run/stop_signal.hpp"
 
 namespace fs = std::filesystem;
 
@@ -94,6 +95,15 @@ fs::path CheckpointSeries::commit(std::unique_ptr<Hdf5File> file) {
   throw_if_any_rank_failed(comm_, "checkpoint", broadcast_text(comm_, problem));
   ++next_;
   return final_path;
+}
+
+CheckpointDecision checkpoint_after_step(MPI_Comm comm, double t, double interval, double& next_time) {
+  CheckpointDecision decision;
+  decision.stop_signal = agreed_stop_signal(comm);
+  decision.due = t >= next_time * (1.0 - 1e-12);
+  if (decision.due) next_time = next_checkpoint_time(t, interval);
+  decision.due = decision.due || decision.stop_signal != 0;
+  return decision;
 }
 
 double next_checkpoint_time(double t, double interval) {

@@ -51,6 +51,26 @@ class CheckpointSeries {
 /// `interval` (output.checkpoint_interval), infinity for interval 0 (none).
 [[nodiscard]] double next_checkpoint_time(double t, double interval);
 
+/// Whether a program writes a checkpoint after its step, and whether it stops
+/// there (the signal's number; 0: goes on).
+struct CheckpointDecision {
+  bool due = false;
+  int stop_signal = 0;
+};
+
+/// Collective, a program running alone, after a step that ended at `t`: a
+/// checkpoint is due at the first step end at or after `next_time` (then
+/// moved on by `interval`) and on a stop signal any rank received.
+[[nodiscard]] CheckpointDecision checkpoint_after_step(MPI_Comm comm, double t, double interval, double& next_time);
+
+/// A coupled program, after a step: where the coupling agreed a restart
+/// point (FluidCoupling, StructureCoupling: restart_point_due(), stop_signal()).
+template <class Coupling>
+[[nodiscard]] CheckpointDecision checkpoint_after_window(Coupling& coupling) {
+  const bool due = coupling.restart_point_due();
+  return {due, due ? coupling.stop_signal() : 0};
+}
+
 /// A checkpoint to restart from, opened for reading on every rank of `comm`.
 struct RestartPoint {
   std::filesystem::path path;

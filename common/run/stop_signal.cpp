@@ -2,6 +2,8 @@
 
 #include <csignal>
 
+#include "common/io/number_text.hpp"
+
 namespace tankfsi {
 namespace {
 
@@ -38,5 +40,11 @@ const char* stop_signal_name(int signal) {
 }
 
 void simulate_stop_signal(int signal) { received = signal; }
+
+StopRequested stopped_after_checkpoint(int signal, double t, const std::filesystem::path& checkpoint) {
+  return {std::string("stopped by ") + stop_signal_name(signal) + " at t = " + number_text(t) +
+              " s; continue with --restart (checkpoint " + checkpoint.string() + ")",
+          checkpoint};
+}
 
 }  // namespace tankfsi

@@ -39,6 +39,9 @@ class StopRequested : public std::exception {
   std::filesystem::path checkpoint_;
 };
 
+/// The StopRequested of a program that wrote `checkpoint` at time `t` on `signal`.
+[[nodiscard]] StopRequested stopped_after_checkpoint(int signal, double t, const std::filesystem::path& checkpoint);
+
 /// For tests: behaves as if `signal` had arrived (0 clears).
 void simulate_stop_signal(int signal);
 

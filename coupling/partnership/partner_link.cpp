@@ -129,7 +129,7 @@ void PartnerLink::send_control(const Control& control) {
   MPI_Isend(&control_buffers_.back(), sizeof(Control), MPI_BYTE, 0, tag_control, inter_, &pending_controls_.back());
 }
 
-Control PartnerLink::receive_control(const std::string& what) {
+Control PartnerLink::receive_record(const std::string& what) {
   Control control;
   if (leader()) {
     std::vector<MPI_Request> request(1);
@@ -137,6 +137,11 @@ Control PartnerLink::receive_control(const std::string& what) {
     wait(request, what);
   }
   MPI_Bcast(&control, sizeof(Control), MPI_BYTE, 0, local_);
+  return control;
+}
+
+Control PartnerLink::receive_control(const std::string& what) {
+  const Control control = receive_record(what);
   if (control.kind == static_cast<std::int32_t>(ControlKind::finalize))
     throw CouplingError(partner_name() + " finished (at t = " + format_seconds(control.time) + ") while the " +
                         side_name(side_) + " program waited for " + what);
@@ -146,13 +151,7 @@ Control PartnerLink::receive_control(const std::string& what) {
 }
 
 Control PartnerLink::receive_window_end(const std::string& what) {
-  Control control;
-  if (leader()) {
-    std::vector<MPI_Request> request(1);
-    MPI_Irecv(&control, sizeof(Control), MPI_BYTE, 0, tag_control, inter_, &request[0]);
-    wait(request, what);
-  }
-  MPI_Bcast(&control, sizeof(Control), MPI_BYTE, 0, local_);
+  const Control control = receive_record(what);
   if (control.kind != static_cast<std::int32_t>(ControlKind::window_end))
     throw CouplingError("protocol out of step: the " + std::string(side_name(side_)) + " program expected " + what +
                         " and received a record of kind " + std::to_string(control.kind) + " for window " +
@@ -162,13 +161,7 @@ Control PartnerLink::receive_window_end(const std::string& what) {
 }
 
 void PartnerLink::receive_finalize() {
-  Control control;
-  if (leader()) {
-    std::vector<MPI_Request> request(1);
-    MPI_Irecv(&control, sizeof(Control), MPI_BYTE, 0, tag_control, inter_, &request[0]);
-    wait(request, "the end of the run");
-  }
-  MPI_Bcast(&control, sizeof(Control), MPI_BYTE, 0, local_);
+  const Control control = receive_record("the end of the run");
   if (control.kind != static_cast<std::int32_t>(ControlKind::finalize))
     throw CouplingError(partner_name() + " sent data for window " + std::to_string(control.window) +
                         " after this program had finished its last window (do both programs use the same end_time?)");

@@ -97,6 +97,10 @@ class PartnerLink {
   [[nodiscard]] double wait_seconds() const { return wait_seconds_; }
 
  private:
+  /// Collective over this program: the leader waits for the partner's next
+  /// control record, of any kind, and every rank returns it.
+  Control receive_record(const std::string& what);
+
   MPI_Comm local_ = MPI_COMM_NULL;
   MPI_Comm inter_ = MPI_COMM_NULL;
   Side side_;

@@ -384,26 +384,15 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       }
       // Checkpoints: alone after any step; coupled at the window ends both
       // programs agreed on (the coupling library's window-end records).
-      {
-        int signal = 0;
-        bool due = false;
-        if (coupling) {
-          due = coupling->restart_point_due();
-          signal = due ? coupling->stop_signal() : 0;
-        } else {
-          signal = agreed_stop_signal(context.comm);
-          due = t >= loop.next_checkpoint * (1.0 - 1e-12);
-          if (due) loop.next_checkpoint = next_checkpoint_time(t, checkpoint_interval);
-        }
-        if (due || signal != 0) {
-          progress.clear();
-          const auto path = write_checkpoint();
-          if (signal != 0) {
-            if (coupling) coupling->finish();  // both checkpoints are complete before either program ends
-            throw StopRequested(std::string("stopped by ") + stop_signal_name(signal) + " at t = " + number_text(t) +
-                                    " s; continue with --restart (checkpoint " + path.string() + ")",
-                                path);
-          }
+      const CheckpointDecision checkpoint =
+          coupling ? checkpoint_after_window(*coupling)
+                   : checkpoint_after_step(context.comm, t, checkpoint_interval, loop.next_checkpoint);
+      if (checkpoint.due) {
+        progress.clear();
+        const auto path = write_checkpoint();
+        if (checkpoint.stop_signal != 0) {
+          if (coupling) coupling->finish();  // both checkpoints are complete before either program ends
+          throw stopped_after_checkpoint(checkpoint.stop_signal, t, path);
         }
       }
     }

@@ -14,6 +14,7 @@
 #include "common/io/probe_file.hpp"
 #include "common/run/checkpoint_series.hpp"
 #include "common/run/stop_signal.hpp"
+#include "support/mpi_world.hpp"
 #include "support/scratch_folder.hpp"
 
 using namespace tankfsi;
@@ -21,17 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-int world_rank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
-
-int world_size() {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
+using testing::world_rank;
+using testing::world_size;
 
 CaseConfig case_with(const fs::path& folder, const std::string& extra) {
   const fs::path file = folder / ("case" + std::to_string(std::hash<std::string>{}(extra)) + ".yaml");

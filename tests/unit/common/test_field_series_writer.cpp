@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "support/mpi_world.hpp"
 #include "support/scratch_folder.hpp"
 #include "common/io/field_series_writer.hpp"
 #include "common/io/hdf5_file.hpp"
@@ -30,17 +31,8 @@ using namespace tankfsi;
 
 namespace {
 
-int world_rank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
-
-int world_size() {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
+using testing::world_rank;
+using testing::world_size;
 
 // ---------------------------------------------------------------- what is written
 
