@@ -75,13 +75,16 @@ TEST_CASE("a stopped pair resumed from its restart point goes on as the run stra
               static_cast<int>(settings.implicit_mode), static_cast<int>(settings.acceleration));
       // Straight through.
       std::vector<WindowReport> straight;
-      {
-        Participant p(split.side, settings, split.local, split.partner);
-        examples::OscillatorPartner side(split.side, split.local, parameters, vertices);
+      const auto start = [&](Participant& p, examples::OscillatorPartner& side) {
         side.declare(p);
         p.exchange_interface();
         side.start(p);
         p.initialize();
+      };
+      {
+        Participant p(split.side, settings, split.local, split.partner);
+        examples::OscillatorPartner side(split.side, split.local, parameters, vertices);
+        start(p, side);
         // No interval, no stop: no restart point but the run's end.
         side.run(p, own_step, [&](int) { CHECK(p.restart_point_due() == !p.is_ongoing()); });
         p.finalize();
@@ -93,10 +96,7 @@ TEST_CASE("a stopped pair resumed from its restart point goes on as the run stra
       {
         Participant p(split.side, settings, split.local, split.partner);
         examples::OscillatorPartner side(split.side, split.local, parameters, vertices);
-        side.declare(p);
-        p.exchange_interface();
-        side.start(p);
-        p.initialize();
+        start(p, side);
         try {
           side.run(p, own_step, [&](int window) {
             if (window == 12 && split.side == Side::fluid) p.request_stop();
