@@ -65,7 +65,7 @@ std::unique_ptr<Hdf5File> CheckpointSeries::begin(double time, const CaseConfig&
     fs::create_directories(folder_, ec);
     if (ec) problem = "cannot create " + folder_.string() + ": " + ec.message();
   }
-  throw_if_any_rank_failed(comm_, "checkpoint", broadcast_text(comm_, problem));
+  throw_if_any_rank_failed(comm_, "checkpoint", problem);
   int ranks = 1;
   MPI_Comm_size(comm_, &ranks);
   auto file = std::make_unique<Hdf5File>(comm_, path(next_).string() + ".partial", FileMode::truncate);
@@ -92,7 +92,7 @@ fs::path CheckpointSeries::commit(std::unique_ptr<Hdf5File> file) {
     for (const int old : checkpoint_numbers(folder_, program_))
       if (old < next_ - 1) fs::remove(path(old), ec);  // a failed removal only leaves a file
   }
-  throw_if_any_rank_failed(comm_, "checkpoint", broadcast_text(comm_, problem));
+  throw_if_any_rank_failed(comm_, "checkpoint", problem);
   ++next_;
   return final_path;
 }
@@ -104,6 +104,14 @@ CheckpointDecision checkpoint_after_step(MPI_Comm comm, double t, double interva
   if (decision.due) next_time = next_checkpoint_time(t, interval);
   decision.due = decision.due || decision.stop_signal != 0;
   return decision;
+}
+
+std::string last_good_checkpoint(const std::function<std::filesystem::path()>& write) {
+  try {
+    return " and checkpoint " + write().string();
+  } catch (const std::runtime_error& failure) {
+    return " (no checkpoint: " + std::string(failure.what()) + ")";
+  }
 }
 
 double next_checkpoint_time(double t, double interval) {

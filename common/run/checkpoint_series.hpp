@@ -15,6 +15,7 @@
 #include <mpi.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,11 @@ template <class Coupling>
   const bool due = coupling.restart_point_due();
   return {due, due ? coupling.stop_signal() : 0};
 }
+
+/// After a failed step, with the program at its last good state: writes it
+/// as a checkpoint with `write` and returns " and checkpoint PATH" for the
+/// error message, or " (no checkpoint: why)" if writing failed too.
+[[nodiscard]] std::string last_good_checkpoint(const std::function<std::filesystem::path()>& write);
 
 /// A checkpoint to restart from, opened for reading on every rank of `comm`.
 struct RestartPoint {

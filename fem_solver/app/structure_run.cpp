@@ -263,13 +263,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
     output.flush();
     output.write_fields(solver.time() + 1e-9, solver.displacement(), solver.velocity());
     std::string saved = " is the final snapshot of structure.xdmf";
-    if (!coupling) {
-      try {
-        saved += " and checkpoint " + write_checkpoint().string();
-      } catch (const std::runtime_error& failure) {
-        saved += " (no checkpoint: " + std::string(failure.what()) + ")";
-      }
-    }
+    if (!coupling) saved += last_good_checkpoint(write_checkpoint);
     throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + number_text(solver.time()) +
                              " s)" + saved);
   }

@@ -406,13 +406,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     outputs.flush();
     outputs.snapshot(t + 1e-9, solver.particles(), {}, {});
     std::string saved = " is the final snapshot of fluid.xdmf";
-    if (!coupling) {
-      try {
-        saved += " and checkpoint " + write_checkpoint().string();
-      } catch (const std::runtime_error& failure) {
-        saved += " (no checkpoint: " + std::string(failure.what()) + ")";
-      }
-    }
+    if (!coupling) saved += last_good_checkpoint(write_checkpoint);
     throw std::runtime_error(std::string(e.what()) + " — the last good state (t = " + number_text(t) + " s)" + saved);
   }
   progress.clear();
