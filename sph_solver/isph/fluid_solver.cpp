@@ -54,7 +54,7 @@ Configuration configuration(const FluidSolver& solver, std::vector<Eigen::Vector
   c.position = std::move(all_positions);
   CellList cells(solver.model().dimension);
   cells.build(c.position, solver.kernel().support_radius());
-  c.neighbours = cells.neighbour_list();
+  c.neighbours = cells.neighbour_list(&solver.kernel(), owned);
   c.walls = find_wall_contacts(solver.walls(), std::span(c.position).first(at(owned)), solver.model().dimension);
   return c;
 }

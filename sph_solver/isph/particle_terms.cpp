@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 namespace tankfsi::sph {
@@ -11,13 +12,35 @@ namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-/// Calls f(j, x_ij, r) for every neighbour j of owned particle i.
+/// One neighbour j of owned particle i: x_ij = x_i - x_j, r = |x_ij|, and the
+/// kernel's value W(r) and slope dW/dr there, as the neighbour list holds them.
+struct Pair {
+  int j;
+  Eigen::Vector3d x_ij;
+  double r;
+  double value;
+  double slope;
+  /// grad_i W_ij = x_ij / r dW/dr; zero at r = 0, where dW/dr vanishes.
+  [[nodiscard]] Eigen::Vector3d gradient() const {
+    return r > 0.0 ? Eigen::Vector3d(x_ij * (slope / r)) : Eigen::Vector3d::Zero();
+  }
+};
+
+/// The sums read each pair's kernel value and slope from the neighbour list.
+void require_kernel_values(const Neighbourhood& n) {
+  if (n.neighbours.values.size() != n.neighbours.indices.size() ||
+      n.neighbours.slopes.size() != n.neighbours.indices.size() || n.neighbours.particle_count() < n.owned)
+    throw std::logic_error("the ISPH sums need a neighbour list built with the kernel for every owned particle");
+}
+
+/// Calls f(pair) for every neighbour of owned particle i.
 template <class F>
 void for_each_neighbour(const Neighbourhood& n, int i, F&& f) {
+  const NeighbourList& list = n.neighbours;
   const Eigen::Vector3d& x_i = n.position[at(i)];
-  for (const int j : n.neighbours.neighbours_of(i)) {
-    const Eigen::Vector3d x_ij = x_i - n.position[at(j)];
-    f(j, x_ij, x_ij.norm());
+  for (int k = list.offsets[at(i)]; k < list.offsets[at(i) + 1]; ++k) {
+    const int j = list.indices[at(k)];
+    f(Pair{j, x_i - n.position[at(j)], list.distances[at(k)], list.values[at(k)], list.slopes[at(k)]});
   }
 }
 
@@ -88,18 +111,19 @@ double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d
   return share;
 }
 
-double laplacian_weight(const Kernel& kernel, const FluidModel& model, double r, double volume) {
-  return 2.0 * volume * r * kernel.derivative(r) / (r * r + model.eta_squared());
+double laplacian_weight(const FluidModel& model, double r, double slope, double volume) {
+  return 2.0 * volume * r * slope / (r * r + model.eta_squared());
 }
 
 std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const double> mass,
                                        std::span<const double> density, std::span<const double> pressure) {
+  require_kernel_values(n);
   std::vector<double> laplacian(at(n.owned));
   for (int i = 0; i < n.owned; ++i) {
     double sum = 0.0;
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d&, double r) {
-      const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
-      sum += laplacian_weight(n.kernel, n.model, r, volume) * (pressure[at(i)] - pressure[at(j)]);
+    for_each_neighbour(n, i, [&](const Pair& p) {
+      const double volume = (mass[at(i)] + mass[at(p.j)]) / (density[at(i)] + density[at(p.j)]);
+      sum += laplacian_weight(n.model, p.r, p.slope, volume) * (pressure[at(i)] - pressure[at(p.j)]);
     });
     if (!n.surface.empty()) sum += n.surface[at(i)].laplacian_share() * pressure[at(i)];
     laplacian[at(i)] = sum;
@@ -108,11 +132,12 @@ std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const d
 }
 
 std::vector<double> kernel_density(const Neighbourhood& n, std::span<const double> mass) {
+  require_kernel_values(n);
   std::vector<double> density(at(n.owned));
   const double self_weight = n.kernel.value(0.0);
   for (int i = 0; i < n.owned; ++i) {
     double sum = mass[at(i)] * self_weight;
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d&, double r) { sum += mass[at(j)] * n.kernel.value(r); });
+    for_each_neighbour(n, i, [&](const Pair& p) { sum += mass[at(p.j)] * p.value; });
     for (const WallContact& c : n.walls.of(i)) sum += n.model.density * c.values.z0;
     for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= n.model.density * o.values.q0;
     density[at(i)] = sum;
@@ -122,12 +147,11 @@ std::vector<double> kernel_density(const Neighbourhood& n, std::span<const doubl
 
 std::vector<double> position_divergence(const Neighbourhood& n, std::span<const double> mass,
                                         std::span<const double> density) {
+  require_kernel_values(n);
   std::vector<double> divergence(at(n.owned));
   for (int i = 0; i < n.owned; ++i) {
     double sum = 0.0;
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d&, double r) {
-      sum -= mass[at(j)] / density[at(j)] * r * n.kernel.derivative(r);
-    });
+    for_each_neighbour(n, i, [&](const Pair& p) { sum -= mass[at(p.j)] / density[at(p.j)] * p.r * p.slope; });
     for (const WallContact& c : n.walls.of(i))
       sum += -c.values.z1 * (c.distance + c.values.depth1) + (n.model.dimension - 1) * c.values.z3;
     for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= o.position_divergence_share();
@@ -140,6 +164,7 @@ std::vector<Eigen::Vector3d> viscous_acceleration(const Neighbourhood& n, std::s
                                                   std::span<const double> density,
                                                   std::span<const Eigen::Vector3d> velocity,
                                                   std::vector<Eigen::Vector3d>& wall_force) {
+  require_kernel_values(n);
   std::vector<Eigen::Vector3d> acceleration(at(n.owned), Eigen::Vector3d::Zero());
   const double mu = n.model.viscosity;
   if (mu == 0.0) return acceleration;
@@ -147,10 +172,10 @@ std::vector<Eigen::Vector3d> viscous_acceleration(const Neighbourhood& n, std::s
   for (int i = 0; i < n.owned; ++i) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     const double rho_i = density[at(i)];
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d&, double r) {
+    for_each_neighbour(n, i, [&](const Pair& p) {
       // x_ij · grad_i W_ij = r W'(r)
-      const double weight = mass[at(j)] * 2.0 * mu / (rho_i * density[at(j)]) * r * n.kernel.derivative(r) / (r * r + eta2);
-      sum += weight * (velocity[at(i)] - velocity[at(j)]);
+      const double weight = mass[at(p.j)] * 2.0 * mu / (rho_i * density[at(p.j)]) * p.r * p.slope / (p.r * p.r + eta2);
+      sum += weight * (velocity[at(i)] - velocity[at(p.j)]);
     });
     const auto contacts = n.walls.of(i);
     for (const WallContact& c : contacts) {
@@ -178,11 +203,12 @@ std::vector<Eigen::Vector3d> viscous_acceleration(const Neighbourhood& n, std::s
 
 std::vector<double> velocity_divergence(const Neighbourhood& n, std::span<const double> mass,
                                         std::span<const double> density, std::span<const Eigen::Vector3d> velocity) {
+  require_kernel_values(n);
   std::vector<double> divergence(at(n.owned));
   for (int i = 0; i < n.owned; ++i) {
     double sum = 0.0;
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d& x_ij, double r) {
-      sum += mass[at(j)] * (velocity[at(i)] - velocity[at(j)]).dot(n.kernel.gradient(x_ij, r));
+    for_each_neighbour(n, i, [&](const Pair& p) {
+      sum += mass[at(p.j)] * (velocity[at(i)] - velocity[at(p.j)]).dot(p.gradient());
     });
     divergence[at(i)] = -sum / density[at(i)];
   }
@@ -193,6 +219,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
                                                    std::span<const double> density, std::span<const double> pressure,
                                                    std::span<const Eigen::Vector3d> predicted_velocity, double dt,
                                                    std::vector<Eigen::Vector3d>& wall_force) {
+  require_kernel_values(n);
   std::vector<Eigen::Vector3d> acceleration(at(n.owned));
   const double rho0 = n.model.density;
   for (int i = 0; i < n.owned; ++i) {
@@ -200,11 +227,11 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
     const double p_i = pressure[at(i)] / (rho_i * rho_i);
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     Eigen::Vector3d fluid_gradient = Eigen::Vector3d::Zero();  // sum_j V_j (P_j - P_i) grad_i W_ij
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d& x_ij, double r) {
-      const double rho_j = density[at(j)];
-      const Eigen::Vector3d grad = n.kernel.gradient(x_ij, r);
-      sum -= mass[at(j)] * (p_i + pressure[at(j)] / (rho_j * rho_j)) * grad;
-      fluid_gradient += mass[at(j)] / rho_j * (pressure[at(j)] - pressure[at(i)]) * grad;
+    for_each_neighbour(n, i, [&](const Pair& p) {
+      const double rho_j = density[at(p.j)];
+      const Eigen::Vector3d grad = p.gradient();
+      sum -= mass[at(p.j)] * (p_i + pressure[at(p.j)] / (rho_j * rho_j)) * grad;
+      fluid_gradient += mass[at(p.j)] / rho_j * (pressure[at(p.j)] - pressure[at(i)]) * grad;
     });
     const auto contacts = n.walls.of(i);
     const auto normal_gradient = [&](int k) {
@@ -263,12 +290,11 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
 
 std::vector<Eigen::Vector3d> concentration_gradient(const Neighbourhood& n, std::span<const double> mass,
                                                     std::span<const double> density) {
+  require_kernel_values(n);
   std::vector<Eigen::Vector3d> gradient(at(n.owned));
   for (int i = 0; i < n.owned; ++i) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d& x_ij, double r) {
-      sum += mass[at(j)] / density[at(j)] * n.kernel.gradient(x_ij, r);
-    });
+    for_each_neighbour(n, i, [&](const Pair& p) { sum += mass[at(p.j)] / density[at(p.j)] * p.gradient(); });
     for (const WallContact& c : n.walls.of(i)) sum += c.values.z1 * c.normal;
     for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= o.gradient_sum();
     gradient[at(i)] = sum;
@@ -280,13 +306,13 @@ std::vector<Eigen::Vector3d> velocity_change_over_shift(const Neighbourhood& n, 
                                                         std::span<const double> density,
                                                         std::span<const Eigen::Vector3d> velocity,
                                                         std::span<const Eigen::Vector3d> shift) {
+  require_kernel_values(n);
   std::vector<Eigen::Vector3d> change(at(n.owned), Eigen::Vector3d::Zero());
   for (int i = 0; i < n.owned; ++i) {
     if (shift[at(i)].isZero()) continue;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for_each_neighbour(n, i, [&](int j, const Eigen::Vector3d& x_ij, double r) {
-      sum += mass[at(j)] / density[at(j)] * n.kernel.gradient(x_ij, r).dot(shift[at(i)]) *
-             (velocity[at(j)] - velocity[at(i)]);
+    for_each_neighbour(n, i, [&](const Pair& p) {
+      sum += mass[at(p.j)] / density[at(p.j)] * p.gradient().dot(shift[at(i)]) * (velocity[at(p.j)] - velocity[at(i)]);
     });
     change[at(i)] = sum;
   }

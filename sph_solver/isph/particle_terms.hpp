@@ -28,7 +28,9 @@
 
 namespace tankfsi::sph {
 
-/// Positions and neighbours of owned + ghost particles; rows 0 .. owned-1 are used.
+/// Positions and neighbours of owned + ghost particles; rows 0 .. owned-1 are used,
+/// and the neighbour list must hold their kernel values and slopes
+/// (CellList::neighbour_list(&kernel, owned)): the sums throw std::logic_error otherwise.
 struct Neighbourhood {
   const Kernel& kernel;
   const FluidModel& model;
@@ -53,8 +55,9 @@ struct Neighbourhood {
                                                       std::span<const double> density);
 
 /// The weight a_ij = 2 V (x_ij · grad_i W_ij) / (r^2 + eta^2) of the Laplacian
-/// (eq 6, with the factor 2): sum_j a_ij (f_i - f_j) approximates lap f.
-[[nodiscard]] double laplacian_weight(const Kernel& kernel, const FluidModel& model, double r, double volume);
+/// (eq 6, with the factor 2), x_ij · grad_i W_ij = r dW/dr (`slope` = dW/dr at r):
+/// sum_j a_ij (f_i - f_j) approximates lap f.
+[[nodiscard]] double laplacian_weight(const FluidModel& model, double r, double slope, double volume);
 
 /// (lap P)_i = sum_j a_ij (P_i - P_j) + the air's share (free_surface.hpp),
 /// V_ij = (m_i + m_j)/(rho_i + rho_j): the PPE's operator on the liquid (the walls'

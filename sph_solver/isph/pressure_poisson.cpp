@@ -56,11 +56,11 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
     values_.push_back(1.0);
     if (dirichlet[at(i)] == 0) {
       double diagonal = 0.0;
-      const Eigen::Vector3d& x_i = n.position[at(i)];
-      for (const int j : n.neighbours.neighbours_of(i)) {
-        const double r = (x_i - n.position[at(j)]).norm();
+      const NeighbourList& list = n.neighbours;
+      for (int k = list.offsets[at(i)]; k < list.offsets[at(i) + 1]; ++k) {
+        const int j = list.indices[at(k)];
         const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
-        const double a = laplacian_weight(n.kernel, n.model, r, volume);
+        const double a = laplacian_weight(n.model, list.distances[at(k)], list.slopes[at(k)], volume);
         diagonal -= a;
         if (dirichlet[at(j)] != 0) continue;
         columns_.push_back(static_cast<PetscInt>(global_index[at(j)]));

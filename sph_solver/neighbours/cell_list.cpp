@@ -133,13 +133,26 @@ void CellList::build(std::span<const Eigen::Vector3d> points, double radius) {
   }
 }
 
-NeighbourList CellList::neighbour_list() const {
+NeighbourList CellList::neighbour_list(const Kernel* kernel, int rows) const {
+  require(rows <= point_count(), "more rows asked for than there are points");
+  const int row_count = rows < 0 ? point_count() : rows;
   NeighbourList list;
-  list.offsets.reserve(at(point_count()) + 1);
+  list.offsets.reserve(at(row_count) + 1);
   list.offsets.push_back(0);
-  for (int i = 0; i < point_count(); ++i) {
-    for_each_neighbour(i, [&](int j, const Eigen::Vector3d&, double) { list.indices.push_back(j); });
+  for (int i = 0; i < row_count; ++i) {
+    for_each_neighbour(i, [&](int j, const Eigen::Vector3d&, double r) {
+      list.indices.push_back(j);
+      list.distances.push_back(r);
+    });
     list.offsets.push_back(static_cast<int>(list.indices.size()));
+  }
+  if (kernel != nullptr) {
+    list.values.resize(list.distances.size());
+    list.slopes.resize(list.distances.size());
+    for (std::size_t k = 0; k < list.distances.size(); ++k) {
+      list.values[k] = kernel->value(list.distances[k]);
+      list.slopes[k] = kernel->derivative(list.distances[k]);
+    }
   }
   return list;
 }

@@ -25,6 +25,7 @@
 
 #include "sph_solver/neighbours/cell_coordinates.hpp"
 #include "sph_solver/neighbours/cell_index_map.hpp"
+#include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/neighbours/neighbour_list.hpp"
 
 namespace tankfsi::sph {
@@ -46,8 +47,11 @@ class CellList {
   template <class Callback>
   void for_each_neighbour(int i, Callback&& callback) const;
 
-  /// Every point's neighbours, rows in point order, each row in for_each_neighbour's order.
-  [[nodiscard]] NeighbourList neighbour_list() const;
+  /// The neighbours of points 0 .. rows-1 (all points when rows < 0), rows in point
+  /// order, each row in for_each_neighbour's order, with each pair's distance and,
+  /// given a kernel, its value and slope there. A solver asks only for the rows of
+  /// its own particles: its ghosts are neighbours, never rows.
+  [[nodiscard]] NeighbourList neighbour_list(const Kernel* kernel = nullptr, int rows = -1) const;
 
   /// The points' indices sorted by cell (cells in Z-order, points of a cell by index):
   /// order[k] is the index of the point that comes k-th. A permutation of 0 .. N-1.

@@ -2,14 +2,22 @@
 // NeighbourList: every particle's neighbours in compressed sparse row (CSR) form,
 // the layout the solver's pair loops and the PPE matrix assembly walk through:
 // the neighbours of i are indices[offsets[i] .. offsets[i+1]).
+//
+// With each neighbour it keeps the pair's distance and, when built for a kernel,
+// the kernel's value and slope there: a step evaluates each pair's kernel once
+// for all its sums (density, divergences, viscosity, PPE, pressure gradient,
+// shifting) rather than once per sum.
 #include <span>
 #include <vector>
 
 namespace tankfsi::sph {
 
 struct NeighbourList {
-  std::vector<int> offsets;  ///< size = particle count + 1, offsets[0] = 0
-  std::vector<int> indices;  ///< neighbour indices, row after row
+  std::vector<int> offsets;       ///< size = row count + 1, offsets[0] = 0
+  std::vector<int> indices;       ///< neighbour indices, row after row
+  std::vector<double> distances;  ///< r = |x_i - x_j| of each entry
+  std::vector<double> values;     ///< W(r) of each entry (empty: built without a kernel)
+  std::vector<double> slopes;     ///< dW/dr at r of each entry (empty: built without a kernel)
 
   [[nodiscard]] int particle_count() const { return offsets.empty() ? 0 : static_cast<int>(offsets.size()) - 1; }
   [[nodiscard]] std::span<const int> neighbours_of(int i) const {

@@ -50,7 +50,7 @@ struct Tank {
     particles = fill_tank(walls.mesh(), spec);
     CellList cells(2);
     cells.build(particles.position, kernel.support_radius());
-    neighbours = cells.neighbour_list();
+    neighbours = cells.neighbour_list(&kernel);
     contacts = find_wall_contacts(walls, particles.position, 2);
     density = kernel_density(view(), particles.mass);
   }

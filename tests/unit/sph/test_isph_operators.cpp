@@ -136,7 +136,7 @@ TEST_CASE("the PPE solves again after one rank alone lost a particle", "[isph]")
     for (int i = 0; i < owned; ++i) x.emplace_back(10.0 * i, 100.0 + 10.0 * rank, 0.0);
     CellList cells(2);
     cells.build(x, kernel.support_radius());
-    const NeighbourList neighbours = cells.neighbour_list();
+    const NeighbourList neighbours = cells.neighbour_list(&kernel);
     const WallContacts contacts = find_wall_contacts(walls, x, 2);
     const Neighbourhood n{kernel, model, x, neighbours, contacts, walls.mesh(), owned};
     long long offset = 0;
