@@ -10,6 +10,7 @@
 #include "common/run/checkpoint_series.hpp"
 #include "common/run/stop_signal.hpp"
 #include "coupling/acceleration/acceleration.hpp"
+#include "coupling/added_mass/added_mass.hpp"
 #include "coupling/interface/interface_exchange.hpp"
 #include "coupling/mapping/nearest_projection.hpp"
 #include "coupling/partnership/partner_link.hpp"
@@ -156,6 +157,14 @@ class Participant::Impl {
   std::vector<double> force_input_;  ///< the F̄ the ramp aims at (eq 17)
   // Initial data written before initialize().
   std::vector<double> initial_values_;
+  // The added-mass operator (coupling.added_mass: computed; added_mass.hpp):
+  // fluid, the whole matrix (written as partial sums, then summed) and the
+  // wall velocity of the last accepted window (whole mesh), which the next
+  // window's change is taken from; structure, the rows of its vertices; both,
+  // the normals of every vertex (ascending id order).
+  std::vector<double> added_mass_;
+  std::vector<double> added_mass_normals_;
+  std::vector<double> previous_wall_velocity_;
   // Fluid with its own wall vertices: the mapping onto the partner's mesh.
   std::vector<double> own_points_;
   std::unique_ptr<NearestProjection> mapping_;
@@ -230,6 +239,8 @@ class Participant::Impl {
   /// The input the program reads from, made from a received part: fluid, the
   /// whole displacement array; structure, its forces.
   void aim(const std::vector<double>& part);
+  /// initialize(): the fluid's added-mass operator to the structure (PROTOCOL.md, "Added mass").
+  void exchange_added_mass();
   void complete_window();
   void complete_explicit();
   void complete_follower();
@@ -304,6 +315,7 @@ void Participant::Impl::initialize() {
                         std::to_string(count));
   if (initial_values_.empty()) initial_values_.assign(count, 0.0);
   start_data();
+  exchange_added_mass();
   if (side_ == Side::fluid) initial_values_ = to_mesh(initial_values_);
 
   // Initial data: each program sends its initial output, receives the
@@ -348,6 +360,50 @@ void Participant::Impl::initialize() {
   }
   write_checkpoint_ = settings_.is_implicit();
   work_seconds_ += std::chrono::duration<double>(Clock::now() - start).count() - (link_.wait_seconds() - wait_before);
+}
+
+void Participant::Impl::exchange_added_mass() {
+  if (!settings_.added_mass_operator) return;
+  const std::size_t n = exchange_->global_vertex_count();
+  const std::size_t values = 3 * n;
+  if (side_ == Side::structure) {
+    added_mass_ = exchange_->receive_part(tag_added_mass, "the fluid's added-mass operator", n);
+    // The normals: from fluid rank 0 to structure rank 0, then to every structure rank.
+    added_mass_normals_.assign(values, 0.0);
+    int rank = 0;
+    MPI_Comm_rank(link_.local(), &rank);
+    if (rank == 0) {
+      std::vector<MPI_Request> request(1);
+      MPI_Irecv(added_mass_normals_.data(), static_cast<int>(values), MPI_DOUBLE, 0, tag_added_mass_normals,
+                link_.inter(), request.data());
+      link_.wait(request, "the normals of the fluid's added-mass operator");
+    }
+    MPI_Bcast(added_mass_normals_.data(), static_cast<int>(values), MPI_DOUBLE, 0, link_.local());
+    return;
+  }
+  if (added_mass_.size() != n * n)
+    throw CouplingError(added_mass_.empty()
+                            ? "coupling.added_mass is computed: the fluid must write_added_mass() before initialize()"
+                            : "added-mass operator of " + std::to_string(added_mass_.size()) + " values, expected " +
+                                  std::to_string(n) + " x " + std::to_string(n));
+  MPI_Allreduce(MPI_IN_PLACE, added_mass_.data(), static_cast<int>(added_mass_.size()), MPI_DOUBLE, MPI_SUM,
+                link_.local());
+  symmetrise(added_mass_, n);
+  added_mass_normals_ = vertex_normals(exchange_->mesh());
+  // Each structure rank gets the rows of its vertices: the slice's rows go
+  // out as the forces do, n values per vertex instead of 3.
+  const std::size_t first = exchange_->slice_offset() / 3;
+  const auto slice_rows = std::span<const double>(added_mass_).subspan(first * n, exchange_->part_size() / 3 * n);
+  exchange_->post_sends(slice_rows, tag_added_mass, n);
+  int rank = 0;
+  MPI_Comm_rank(link_.local(), &rank);
+  if (rank == 0) {
+    std::vector<MPI_Request> request(1);
+    MPI_Isend(added_mass_normals_.data(), static_cast<int>(values), MPI_DOUBLE, 0, tag_added_mass_normals,
+              link_.inter(), request.data());
+    link_.wait(request, "the structure to take the added-mass operator's normals");
+  }
+  previous_wall_velocity_.assign(values, 0.0);  // the walls start at rest
 }
 
 void Participant::Impl::start_data() {
@@ -415,6 +471,12 @@ void Participant::Impl::capture_restart_state() {
   state.reports = reports_;
   state.arrays["input_start"] = side_ == Side::fluid ? path_.start() : ramp_.start();
   state.arrays["last_output"] = whole(last_output_part_);
+  if (settings_.added_mass_operator) {
+    // Fluid: the whole operator (a restart may have other fluid ranks); structure: its rows.
+    state.arrays["added_mass"] = added_mass_;
+    state.arrays["added_mass_normals"] = added_mass_normals_;
+    if (side_ == Side::fluid) state.arrays["previous_wall_velocity"] = previous_wall_velocity_;
+  }
   if (controller_) {
     state.arrays["sent_input"] = whole(sent_input_);
     state.arrays["controller_last"] = whole(last_output_);
@@ -445,6 +507,16 @@ void Participant::Impl::resume(const CouplingRestartState& state) {
   // partner takes its input for the next window from it, as at that window's end.
   last_output_part_ = part_of(state, "last_output");
   if (side_ == Side::structure) displacement_ = last_output_part_;
+  if (settings_.added_mass_operator) {
+    const auto array = [&](const std::string& name) {
+      const auto found = state.arrays.find(name);
+      if (found == state.arrays.end()) throw CouplingError("restart state without '" + name + "'");
+      return found->second;
+    };
+    added_mass_ = array("added_mass");
+    added_mass_normals_ = array("added_mass_normals");
+    if (side_ == Side::fluid) previous_wall_velocity_ = array("previous_wall_velocity");
+  }
   const int ended = window_ - 1;
   send_part(last_output_part_, ended, verdict_accept);
   const Received previous = receive_part(ended, 0, partner_data_name() + " of window " + std::to_string(ended));
@@ -481,7 +553,18 @@ void Participant::Impl::resume(const CouplingRestartState& state) {
 // ---- messages -------------------------------------------------------------
 
 std::vector<double> Participant::Impl::output_part() {
-  if (side_ == Side::fluid) return exchange_->reduce_to_slice(force_average_.average(window_length()));
+  if (side_ == Side::fluid) {
+    std::vector<double> slice = exchange_->reduce_to_slice(force_average_.average(window_length()));
+    if (settings_.added_mass_operator) {
+      const std::size_t n = exchange_->global_vertex_count();
+      const std::size_t first = exchange_->slice_offset() / 3;
+      std::vector<double> change = path_.velocity(window_length());
+      for (std::size_t k = 0; k < change.size(); ++k) change[k] -= previous_wall_velocity_[k];
+      add_added_mass_reaction(std::span<const double>(added_mass_).subspan(first * n, slice.size() / 3 * n), first, n,
+                              added_mass_normals_, change, window_length(), slice);
+    }
+    return slice;
+  }
   if (!displacement_written_)
     throw CouplingError("window " + std::to_string(window_) +
                         " ended without write(displacement) since its start: the structure must write its "
@@ -695,6 +778,7 @@ void Participant::Impl::accept(const std::vector<double>& next_input_part, int i
     report.impulse_applied = component_sums(link_.local(), ramp_.mean(), window_length());
   }
   reports_.push_back(report);
+  if (side_ == Side::fluid && settings_.added_mass_operator) previous_wall_velocity_ = path_.velocity(window_length());
 
   window_start_ += window_length();
   elapsed_ = 0.0;
@@ -833,6 +917,21 @@ bool Participant::window_completed() const { return impl_->window_completed_; }
 const std::vector<WindowReport>& Participant::window_reports() const { return impl_->reports_; }
 CouplingTimings Participant::timings() const { return {impl_->link_.wait_seconds(), impl_->work_seconds_}; }
 void Participant::finalize() { impl_->finalize(); }
+std::vector<double> Participant::interface_normals() const {
+  if (impl_->side_ != Side::fluid) throw CouplingError("interface_normals: the fluid side's (the structure has added_mass())");
+  return vertex_normals(impl_->mesh());
+}
+void Participant::write_added_mass(std::span<const double> matrix) {
+  if (impl_->side_ != Side::fluid || !impl_->settings_.added_mass_operator || impl_->initialized_ || !impl_->exchange_)
+    throw CouplingError("write_added_mass: the fluid's, with coupling.added_mass: computed, after "
+                        "exchange_interface() and before initialize()");
+  impl_->added_mass_.assign(matrix.begin(), matrix.end());
+}
+AddedMassRows Participant::added_mass() const {
+  if (impl_->side_ != Side::structure || !impl_->settings_.added_mass_operator || !impl_->initialized_)
+    throw CouplingError("added_mass: the structure's, with coupling.added_mass: computed, after initialize()");
+  return {impl_->added_mass_normals_, impl_->added_mass_};
+}
 void Participant::set_restart_interval(double seconds) {
   if (impl_->initialized_) throw CouplingError("set_restart_interval: after initialize()");
   if (!(seconds >= 0.0)) throw CouplingError("set_restart_interval: the interval must be 0 or positive");

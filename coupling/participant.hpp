@@ -27,6 +27,11 @@
 //   structure: declares its vertices; writes displacement (m, relative to the
 //              tank base) of its vertices, at least at the end of each window;
 //              reads force on its vertices.
+//   With coupling.added_mass: computed (PROTOCOL.md, "Added mass") the fluid
+//   writes the added-mass operator (write_added_mass) before initialize(); the
+//   structure takes its rows (added_mass()) after initialize() and carries
+//   them in its inertia; every force it reads then holds back the impulse the
+//   operator gives for the change of the fluid's wall velocity at the window start.
 // Time (eqs 16-18): the fluid's forces are averaged over the window (eq 16);
 // the structure reads them ramped (eq 17, chi); the fluid reads a wall moving
 // with constant velocity over the window (eq 18).
@@ -46,6 +51,16 @@
 namespace tankfsi::coupling {
 
 enum class Field { force, displacement, velocity };
+
+/// The added-mass operator as the structure receives it (PROTOCOL.md, "Added
+/// mass"; coupling/added_mass/added_mass.hpp): `normals`, 3 per interface
+/// vertex in ascending id order; `rows`, for each vertex this rank declared
+/// (declaration order) one row of A over all vertices (ascending id order):
+/// its added mass is the block n_i A_ij n_j^T (kg) between the translations of i and j.
+struct AddedMassRows {
+  std::vector<double> normals;
+  std::vector<double> rows;
+};
 
 /// What one coupling window did (the structure side knows the impulses).
 struct WindowReport {
@@ -180,6 +195,18 @@ class Participant {
 
   /// Collective over both programs: tells the partner this program is done.
   void finalize();
+
+  /// Fluid, after exchange_interface(): the unit normal of each interface
+  /// vertex (3 per vertex, ascending id order), the directions of the
+  /// added-mass operator (coupling/added_mass/added_mass.hpp).
+  [[nodiscard]] std::vector<double> interface_normals() const;
+  /// Fluid, with coupling.added_mass: computed, before initialize(): the
+  /// operator A (n x n row-major over the interface vertices in ascending id
+  /// order, kg): A_ij the impulse on vertex i along -n_i when vertex j starts
+  /// moving along n_j at 1 m/s; each rank its partial sums.
+  void write_added_mass(std::span<const double> matrix);
+  /// Structure, with coupling.added_mass: computed, after initialize().
+  [[nodiscard]] AddedMassRows added_mass() const;
 
   class Impl;
 

@@ -42,6 +42,7 @@ std::map<std::string, std::string> CouplingSettings::as_map() const {
       {"coupling.time_window", exact_text(time_window)},
       {"end_time", exact_text(end_time)},
       {"coupling.structure_load", hold_window_average ? "window_average" : "ramp"},
+      {"coupling.added_mass", added_mass_operator ? "computed" : "none"},
   };
   if (!hold_window_average) m["coupling.ramp_chi"] = exact_text(ramp_chi);
   if (scheme != Scheme::parallel_staggered) m["coupling.first"] = side_name(first);
@@ -86,6 +87,7 @@ CouplingSettings read_coupling_settings(const CaseConfig& config) {
   s.time_window = config.real("coupling.time_window");
   s.end_time = config.real("end_time");
   s.hold_window_average = config.text("coupling.structure_load") == "window_average";
+  s.added_mass_operator = config.text("coupling.added_mass") == "computed";
   if (!s.hold_window_average) s.ramp_chi = config.real("coupling.ramp_chi");
   s.timeout = config.real("coupling.timeout");
   if (config.has("coupling.first")) s.first = config.text("coupling.first") == "structure" ? Side::structure : Side::fluid;

@@ -29,6 +29,9 @@ struct CouplingSettings {
   /// True: the structure holds the fluid's window average F̄ over the window
   /// instead of the ramp of eq 17 (coupling.structure_load: window_average).
   bool hold_window_average = false;
+  /// True: added-mass partitioning (coupling.added_mass: computed;
+  /// coupling/added_mass/added_mass.hpp, PROTOCOL.md "Added mass").
+  bool added_mass_operator = false;
   Side first = Side::fluid;   ///< sequential staggered and serial implicit
   ImplicitMode implicit_mode = ImplicitMode::serial;
   int max_iterations = 30;

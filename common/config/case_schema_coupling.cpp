@@ -17,6 +17,13 @@ std::vector<KeySpec> coupling_keys() {
           .default_is("ramp"),
       real_key("coupling.ramp_chi", "Ramp parameter chi of eq 17: 1 is smooth, 2 conserves each window's impulse.")
           .default_is("1").at_least(1).at_most(2).only_when("coupling.structure_load", {"ramp"}),
+      choice_key("coupling.added_mass", {"none", "computed"},
+                 "Added-mass partitioning (coupling/PROTOCOL.md, 'Added mass'): none (the paper), or computed: "
+                 "at t = 0 the fluid computes the added-mass operator of the wetted surface with its own "
+                 "pressure equation (one solve per interface vertex), the structure carries it in its "
+                 "inertia, and the fluid's forces hold back the impulse the operator gives for its wall's "
+                 "change of velocity. Keeps staggered coupling stable where the liquid outweighs the wall.")
+          .default_is("none"),
       choice_key("coupling.first", {"fluid", "structure"},
                  "Which program advances a window first (sequential staggered and serial implicit).")
           .default_is("fluid").only_when("coupling.scheme", {"sequential_staggered", "implicit"}),

@@ -1,7 +1,9 @@
 // The C interface (include/tankfsi/coupling.h) over the C++ Participant.
 #include "tankfsi/coupling.h"
 
+#include <algorithm>
 #include <iostream>
+#include <stdexcept>
 #include <memory>
 #include <string>
 
@@ -143,5 +145,29 @@ int tankfsi_requires_reading_checkpoint(tankfsi_participant* p) {
 }
 int tankfsi_window_completed(const tankfsi_participant* p) { return p->participant->window_completed() ? 1 : 0; }
 int tankfsi_finalize(tankfsi_participant* p) { return guarded(p, [&] { p->participant->finalize(); }); }
+
+namespace {
+void copy_exactly(const std::vector<double>& from, double* to, size_t count, const char* what) {
+  if (count != from.size())
+    throw std::invalid_argument(std::string(what) + ": array of " + std::to_string(count) + " values, expected " +
+                                std::to_string(from.size()));
+  std::copy(from.begin(), from.end(), to);
+}
+}  // namespace
+
+int tankfsi_interface_normals(const tankfsi_participant* p, double* normals, size_t count) {
+  return guarded(p, [&] { copy_exactly(p->participant->interface_normals(), normals, count, "tankfsi_interface_normals"); });
+}
+int tankfsi_write_added_mass(tankfsi_participant* p, const double* matrix, size_t count) {
+  return guarded(p, [&] { p->participant->write_added_mass(std::span<const double>(matrix, count)); });
+}
+int tankfsi_added_mass(const tankfsi_participant* p, double* normals, size_t normal_count, double* rows,
+                       size_t row_count) {
+  return guarded(p, [&] {
+    const auto operator_rows = p->participant->added_mass();
+    copy_exactly(operator_rows.normals, normals, normal_count, "tankfsi_added_mass (normals)");
+    copy_exactly(operator_rows.rows, rows, row_count, "tankfsi_added_mass (rows)");
+  });
+}
 
 }  // extern "C"

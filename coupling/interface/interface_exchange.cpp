@@ -51,6 +51,9 @@ InterfaceExchange::InterfaceExchange(PartnerLink& link, const std::vector<std::i
   mesh_.ids = ids;
   mesh_.coordinates = coordinates;
   part_size_ = 3 * ids.size();
+  unsigned long long declared = ids.size();
+  MPI_Allreduce(MPI_IN_PLACE, &declared, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, link_.local());
+  global_vertices_ = static_cast<std::size_t>(declared);
 
   // The mesh goes to fluid rank (own rank mod fluid ranks); the fluid ranks
   // share it among themselves.
@@ -239,40 +242,43 @@ std::vector<double> InterfaceExchange::gather_slices(std::span<const double> sli
   return whole;
 }
 
-void InterfaceExchange::post_sends(std::span<const double> part, int tag) {
-  if (part.size() != part_size_)
+void InterfaceExchange::post_sends(std::span<const double> part, int tag, std::size_t values_per_vertex) {
+  const std::size_t width = values_per_vertex;
+  if (part.size() != part_size_ / 3 * width)
     throw CouplingError("interface part of " + std::to_string(part.size()) + " values, expected " +
-                        std::to_string(part_size_));
+                        std::to_string(part_size_ / 3 * width));
   finish_sends("the partner to take earlier interface data");
   for (std::size_t p = 0; p < pair_vertices_.size(); ++p) {
     const auto& positions = pair_vertices_[p];
     if (positions.empty()) continue;
     auto& buffer = send_buffers_[p];
-    buffer.resize(3 * positions.size());
+    buffer.resize(width * positions.size());
     for (std::size_t k = 0; k < positions.size(); ++k)
-      for (std::size_t c = 0; c < 3; ++c) buffer[3 * k + c] = part[3 * static_cast<std::size_t>(positions[k]) + c];
+      for (std::size_t c = 0; c < width; ++c)
+        buffer[width * k + c] = part[width * static_cast<std::size_t>(positions[k]) + c];
     send_requests_.emplace_back();
     MPI_Isend(buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, static_cast<int>(p), tag, link_.inter(),
               &send_requests_.back());
   }
 }
 
-std::vector<double> InterfaceExchange::receive_part(int tag, const std::string& what) {
+std::vector<double> InterfaceExchange::receive_part(int tag, const std::string& what, std::size_t values_per_vertex) {
+  const std::size_t width = values_per_vertex;
   std::vector<std::vector<double>> buffers(pair_vertices_.size());
   std::vector<MPI_Request> requests;
   for (std::size_t p = 0; p < pair_vertices_.size(); ++p) {
     if (pair_vertices_[p].empty()) continue;
-    buffers[p].resize(3 * pair_vertices_[p].size());
+    buffers[p].resize(width * pair_vertices_[p].size());
     requests.emplace_back();
     MPI_Irecv(buffers[p].data(), static_cast<int>(buffers[p].size()), MPI_DOUBLE, static_cast<int>(p), tag,
               link_.inter(), &requests.back());
   }
   link_.wait(requests, what);
-  std::vector<double> part(part_size_);
+  std::vector<double> part(part_size_ / 3 * width);
   for (std::size_t p = 0; p < pair_vertices_.size(); ++p)
     for (std::size_t k = 0; k < pair_vertices_[p].size(); ++k)
-      for (std::size_t c = 0; c < 3; ++c)
-        part[3 * static_cast<std::size_t>(pair_vertices_[p][k]) + c] = buffers[p][3 * k + c];
+      for (std::size_t c = 0; c < width; ++c)
+        part[width * static_cast<std::size_t>(pair_vertices_[p][k]) + c] = buffers[p][width * k + c];
   return part;
 }
 

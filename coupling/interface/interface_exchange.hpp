@@ -41,6 +41,7 @@ class InterfaceExchange {
   [[nodiscard]] std::size_t part_size() const { return part_size_; }
   /// Fluid: offset of this rank's slice in the whole array (values).
   [[nodiscard]] std::size_t slice_offset() const { return slice_offset_; }
+  /// Vertices of the whole interface (both sides).
   [[nodiscard]] std::size_t global_vertex_count() const { return global_vertices_; }
 
   /// Fluid: sums the ranks' whole arrays of partial values onto the slices.
@@ -49,10 +50,11 @@ class InterfaceExchange {
   [[nodiscard]] std::vector<double> gather_slices(std::span<const double> slice) const;
 
   /// Posts the sends of this rank's part (slice or declared vertices) to the
-  /// partner ranks that need them; complete with finish_sends().
-  void post_sends(std::span<const double> part, int tag);
+  /// partner ranks that need them; complete with finish_sends(). A part has
+  /// `values_per_vertex` values per vertex (3 for nodal vectors).
+  void post_sends(std::span<const double> part, int tag, std::size_t values_per_vertex = 3);
   /// Receives this rank's part from the partner ranks (blocking, timed).
-  [[nodiscard]] std::vector<double> receive_part(int tag, const std::string& what);
+  [[nodiscard]] std::vector<double> receive_part(int tag, const std::string& what, std::size_t values_per_vertex = 3);
   void finish_sends(const std::string& what);
 
  private:

@@ -39,6 +39,8 @@ enum Tag : int {
   tag_exchange_plan = 120,
   tag_force = 130,
   tag_displacement = 131,
+  tag_added_mass = 132,
+  tag_added_mass_normals = 133,
 };
 
 enum class ControlKind : std::int32_t { data = 1, finalize = 2, window_end = 3 };

@@ -30,10 +30,26 @@ void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
   petsc_check(VecWAXPY(rhs_.get(), -1.0, ku_.get(), load), "VecWAXPY");
   damping_times(v_.get(), work_.get());
   petsc_check(VecAXPY(rhs_.get(), -1.0, work_.get()), "VecAXPY");
-  petsc_check(VecPointwiseDivide(a_.get(), rhs_.get(), m_), "VecPointwiseDivide");
+  if (inertia_)
+    inertia_->solve(rhs_.get(), a_.get());
+  else
+    petsc_check(VecPointwiseDivide(a_.get(), rhs_.get(), m_), "VecPointwiseDivide");
   // The products the steps carry along (see the header).
   petsc_check(MatMult(k_, v_.get(), kv_.get()), "MatMult");
   petsc_check(MatMult(k_, a_.get(), ka_.get()), "MatMult");
+}
+
+void NewmarkIntegrator::set_added_mass(Mat added_mass) {
+  added_mass_ = added_mass;
+  inertia_.reset();
+  inertia_matrix_.reset();
+  if (added_mass_ != nullptr) {
+    petsc_check(MatDuplicate(added_mass_, MAT_COPY_VALUES, inertia_matrix_.out()), "MatDuplicate");
+    petsc_check(MatDiagonalSet(inertia_matrix_.get(), m_, ADD_VALUES), "MatDiagonalSet");
+    petsc_check(MatSetOption(inertia_matrix_.get(), MAT_SPD, PETSC_TRUE), "MatSetOption");
+    inertia_ = factory_(inertia_matrix_.get());
+  }
+  solver_.reset();  // K_eff changes: factorised again at the next step
 }
 
 void NewmarkIntegrator::factorise(double dt) {
@@ -44,6 +60,10 @@ void NewmarkIntegrator::factorise(double dt) {
   petsc_check(VecCopy(m_, work_.get()), "VecCopy");
   petsc_check(VecScale(work_.get(), a0 + a1 * damping_.alpha), "VecScale");
   petsc_check(MatDiagonalSet(effective_.get(), work_.get(), ADD_VALUES), "MatDiagonalSet");
+  // The added mass is inertia only (no Rayleigh share): a0 M_a. It couples
+  // vertices K does not: the merged pattern is built once per factorisation.
+  if (added_mass_ != nullptr)
+    petsc_check(MatAXPY(effective_.get(), a0, added_mass_, DIFFERENT_NONZERO_PATTERN), "MatAXPY");
   petsc_check(MatSetOption(effective_.get(), MAT_SPD, PETSC_TRUE), "MatSetOption");
   solver_ = factory_(effective_.get());
   factorised_dt_ = dt;
@@ -72,6 +92,12 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   petsc_check(VecAXPY(work_.get(), a3 + alpha * a5, a_.get()), "VecAXPY");
   petsc_check(VecPointwiseMult(rhs_.get(), m_, work_.get()), "VecPointwiseMult");
   petsc_check(VecAXPY(rhs_.get(), 1.0, load), "VecAXPY");
+  if (added_mass_ != nullptr) {
+    // + M_a (a0 u + a2 v + a3 a)
+    petsc_check(VecAXPBYPCZ(work_.get(), a0, a2, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
+    petsc_check(VecAXPY(work_.get(), a3, a_.get()), "VecAXPY");
+    petsc_check(MatMultAdd(added_mass_, work_.get(), rhs_.get(), rhs_.get()), "MatMultAdd");
+  }
   if (beta_r != 0.0) {
     const PetscScalar weights[3] = {beta_r * a1, beta_r * a4, beta_r * a5};
     Vec products[3] = {ku_.get(), kv_.get(), ka_.get()};
@@ -86,8 +112,12 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   petsc_check(VecAXPBYPCZ(a_new_.get(), -a2, -a3, a0, v_.get(), a_.get()), "VecAXPBYPCZ");
   petsc_check(VecAXPBYPCZ(v_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, a_.get(), a_new_.get()), "VecAXPBYPCZ");
   if (beta_r != 0.0) {
-    // K u_new = (rhs - (a0 + a1 alpha) M u_new) / (1 + a1 beta_R); then K a and K v as a and v.
+    // K u_new = (rhs - (a0 + a1 alpha) M u_new - a0 M_a u_new) / (1 + a1 beta_R); then K a and K v as a and v.
     petsc_check(VecPointwiseMult(work_.get(), m_, u_new_.get()), "VecPointwiseMult");
+    if (added_mass_ != nullptr) {
+      petsc_check(MatMult(added_mass_, u_new_.get(), work2_.get()), "MatMult");
+      petsc_check(VecAXPY(work_.get(), a0 / (a0 + a1 * alpha), work2_.get()), "VecAXPY");
+    }
     petsc_check(VecAXPBY(work_.get(), 1.0 / (1.0 + a1 * beta_r), -(a0 + a1 * alpha) / (1.0 + a1 * beta_r), rhs_.get()),
                 "VecAXPBY");
     petsc_check(VecWAXPY(ka_new_.get(), -1.0, ku_.get(), work_.get()), "VecWAXPY");

@@ -14,6 +14,13 @@
 // and K v, K a from the same linear updates as v and a. Each is as accurate
 // as a product with K (a direct solve's residual is of the size of a
 // product's rounding), and no product means no pass over K's 2e6 entries.
+//
+// An added mass M_a (set_added_mass: a coupled liquid's estimate of its
+// inertia on the wetted surface, coupling/PROTOCOL.md "Added mass") joins the
+// inertia but not the damping: M a + M_a a + C v + K u = F, C = alpha M +
+// beta_R K with the structure's own M. M_a is sparse (3 x 3 blocks of the
+// interface vertices' translations), so M + M_a is no longer diagonal: the
+// acceleration of initialise() then takes one solve with it.
 #include <memory>
 
 #include "fem_solver/analysis/rayleigh_damping.hpp"
@@ -38,8 +45,12 @@ class NewmarkIntegrator {
   NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping, SolverFactory factory);
 
   /// Sets the state at the current time; the acceleration follows from the
-  /// equation of motion with the load `load` (M is diagonal: no solve).
+  /// equation of motion with the load `load` (M is diagonal: no solve; with
+  /// an added mass one solve with M + M_a).
   void initialise(Vec displacement, Vec velocity, Vec load);
+  /// Adds M_a (same layout as K; nullptr: none) to the inertia from the next
+  /// step on; K_eff is factorised again. The matrix is kept by reference.
+  void set_added_mass(Mat added_mass);
   /// Assembles and factorises K_eff for steps of dt now (step() does it on
   /// the first step of a new dt otherwise).
   void prepare(double dt);
@@ -67,6 +78,8 @@ class NewmarkIntegrator {
 
   Mat k_;
   Vec m_;
+  Mat added_mass_ = nullptr;              ///< M_a, or none
+  std::unique_ptr<LinearSolve> inertia_;  ///< (M + M_a)^-1, with an added mass
   RayleighCoefficients damping_;
   SolverFactory factory_;
   std::unique_ptr<LinearSolve> solver_;
@@ -75,6 +88,7 @@ class NewmarkIntegrator {
   int factorisations_ = 0;
   PetscVector u_, v_, a_, rhs_, work_, work2_, a_new_, u_new_;  // created once: no allocation per step
   PetscVector ku_, kv_, ka_, ka_new_;  ///< K u, K v, K a (kept when beta_R != 0)
+  PetscMatrix inertia_matrix_;         ///< M + M_a, with an added mass
 };
 
 }  // namespace tankfsi::fem

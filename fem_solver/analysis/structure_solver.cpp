@@ -78,6 +78,61 @@ void StructureSolver::set_external_loads(std::span<const double> forces) {
   system_.assembler().scatter(nodal, external_load_.get());
 }
 
+void StructureSolver::set_interface_added_mass(std::span<const double> matrix, std::span<const double> normals) {
+  const std::size_t n = interface_.node_ids.size();
+  if (matrix.size() != n * n || normals.size() != 3 * n)
+    throw std::invalid_argument("set_interface_added_mass: " + std::to_string(matrix.size()) + " entries and " +
+                                std::to_string(normals.size()) + " normal values for " + std::to_string(n) +
+                                " interface vertices");
+  Mat k = system_.stiffness();
+  PetscInt local_rows = 0, local_columns = 0, rows = 0, columns = 0, first = 0, end = 0;
+  petsc_check(MatGetLocalSize(k, &local_rows, &local_columns), "MatGetLocalSize");
+  petsc_check(MatGetSize(k, &rows, &columns), "MatGetSize");
+  petsc_check(MatGetOwnershipRange(k, &first, &end), "MatGetOwnershipRange");
+  // Every free interface translation couples with every other: each interface
+  // row of this rank has them all, split into this rank's columns and the rest.
+  PetscInt own_columns = 0, other_columns = 0;
+  for (const PetscInt e : interface_equations_)
+    if (e >= 0) ++(e >= first && e < end ? own_columns : other_columns);
+  // Other rows hold their (zero) diagonal: M + M_a is then M_a with M on its diagonal.
+  std::vector<PetscInt> diagonal_count(static_cast<std::size_t>(local_rows), 1);
+  std::vector<PetscInt> off_diagonal_count(static_cast<std::size_t>(local_rows), 0);
+  for (const PetscInt e : interface_equations_)
+    if (e >= first && e < end) {
+      diagonal_count[static_cast<std::size_t>(e - first)] = own_columns;
+      off_diagonal_count[static_cast<std::size_t>(e - first)] = other_columns;
+    }
+  petsc_check(MatCreateAIJ(PetscObjectComm(reinterpret_cast<PetscObject>(k)), local_rows, local_columns, rows, columns, 0,
+                           diagonal_count.data(), 0, off_diagonal_count.data(), added_mass_.out()),
+              "MatCreateAIJ");
+  for (PetscInt row = first; row < end; ++row)
+    petsc_check(MatSetValue(added_mass_.get(), row, row, 0.0, INSERT_VALUES), "MatSetValue");
+  std::vector<PetscInt> column_index;
+  std::vector<PetscScalar> values;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d n_i(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+    for (int a = 0; a < 3; ++a) {
+      const PetscInt row = interface_equations_[3 * i + static_cast<std::size_t>(a)];
+      if (row < first || row >= end) continue;  // another rank's row, or a supported DOF
+      column_index.clear();
+      values.clear();
+      for (std::size_t j = 0; j < n; ++j)
+        for (int b = 0; b < 3; ++b) {
+          const PetscInt column = interface_equations_[3 * j + static_cast<std::size_t>(b)];
+          if (column < 0) continue;
+          column_index.push_back(column);
+          values.push_back(n_i[a] * matrix[i * n + j] * normals[3 * j + static_cast<std::size_t>(b)]);
+        }
+      petsc_check(MatSetValues(added_mass_.get(), 1, &row, static_cast<PetscInt>(column_index.size()),
+                               column_index.data(), values.data(), INSERT_VALUES),
+                  "MatSetValues");
+    }
+  }
+  petsc_check(MatAssemblyBegin(added_mass_.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(added_mass_.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  integrator_.set_added_mass(added_mass_.get());
+}
+
 void StructureSolver::balance_acceleration() {
   build_load(time_);
   integrator_.initialise(integrator_.displacement(), integrator_.velocity(), load_.get());

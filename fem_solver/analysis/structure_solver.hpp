@@ -38,6 +38,13 @@ class StructureSolver {
   /// Forces on the interface vertices (3 per vertex, global axes); the same on
   /// every rank. Loads on supported DOFs go into the supports.
   void set_external_loads(std::span<const double> forces);
+  /// A coupled liquid's added-mass operator on the interface
+  /// (coupling/added_mass/added_mass.hpp): `matrix` A (n x n row-major over
+  /// the interface vertices, kg) and each vertex's unit normal (3 each); the
+  /// block n_i A_ij n_j^T joins the inertia between the free translations of
+  /// vertices i and j, not the damping, from the next step on (the next
+  /// balance_acceleration() too). The same on every rank. Collective.
+  void set_interface_added_mass(std::span<const double> matrix, std::span<const double> normals);
   /// Makes the acceleration at the current time consistent with the loads now
   /// set (M a = F - K u - C v): call once after giving the loads at t = 0, so
   /// that a structure loaded from the start (the liquid's hydrostatic force)
@@ -99,6 +106,7 @@ class StructureSolver {
   StructureSystem& system_;
   const GroundMotion& motion_;
   NewmarkIntegrator integrator_;
+  PetscMatrix added_mass_;
   PetscVector constant_load_;
   PetscVector external_load_;
   PetscVector load_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "coupling/settings.hpp"
 
@@ -69,6 +70,7 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
                                " interface reference displacements for " + std::to_string(n) + " vertices");
     reference_ = resume->reference;
     participant_.resume(resume->state);
+    if (coupling::read_coupling_settings(context.config).added_mass_operator) carry_added_mass(context);
     return;
   }
   const std::vector<double> u = solver.interface_displacements();
@@ -76,6 +78,7 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
     for (std::size_t c = 0; c < 3; ++c) owned_values_[3 * k + c] = u[3 * owned_[k] + c];
   participant_.write(coupling::Field::displacement, owned_values_);
   participant_.initialize();
+  if (coupling::read_coupling_settings(context.config).added_mass_operator) carry_added_mass(context);
 
   // At t = 0 the structure carries the fluid's initial forces: balanced by its
   // acceleration, or by its deformation (structure.initial_state: equilibrium;
@@ -90,12 +93,44 @@ StructureCoupling::StructureCoupling(ProgramContext& context, StructureSolver& s
   }
 }
 
+void StructureCoupling::carry_added_mass(ProgramContext& context) {
+  // Rows of the vertices this rank declared, columns and normals in ascending
+  // id order: every rank gathers the whole operator in interface order.
+  const coupling::AddedMassRows received = participant_.added_mass();
+  const InterfaceMesh& interface = solver_.interface();
+  const std::size_t n = interface.node_ids.size();
+  std::vector<std::size_t> by_id(n);
+  std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+  std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return interface.node_ids[a] < interface.node_ids[b]; });
+  std::vector<int> counts, offsets;
+  for (const int c : counts_) counts.push_back(c / 3 * static_cast<int>(n));
+  for (const int d : displacements_) offsets.push_back(d / 3 * static_cast<int>(n));
+  std::vector<double> gathered_rows(n * n);
+  MPI_Allgatherv(received.rows.data(), static_cast<int>(received.rows.size()), MPI_DOUBLE, gathered_rows.data(),
+                 counts.data(), offsets.data(), MPI_DOUBLE, comm_);
+  std::vector<double> matrix(n * n), normals(3 * n);
+  for (std::size_t p = 0; p < order_.size(); ++p)
+    for (std::size_t j = 0; j < n; ++j) matrix[order_[p] * n + by_id[j]] = gathered_rows[p * n + j];
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t c = 0; c < 3; ++c) normals[3 * by_id[j] + c] = received.normals[3 * j + c];
+  solver_.set_interface_added_mass(matrix, normals);
+  added_mass_ = std::accumulate(matrix.begin(), matrix.end(), 0.0);
+  context.log.info("coupling: the interface carries the liquid's added-mass operator (", n, " x ", n,
+                   "; ", added_mass_, " kg moving outward together)");
+}
+
+std::vector<double> StructureCoupling::gathered(const std::vector<double>& owned) {
+  MPI_Allgatherv(owned.data(), static_cast<int>(owned.size()), MPI_DOUBLE, gathered_.data(), counts_.data(),
+                 displacements_.data(), MPI_DOUBLE, comm_);
+  std::vector<double> values(gathered_.size());
+  for (std::size_t p = 0; p < order_.size(); ++p)
+    for (std::size_t c = 0; c < 3; ++c) values[3 * order_[p] + c] = gathered_[3 * p + c];
+  return values;
+}
+
 void StructureCoupling::load_interface(double relative_dt) {
   participant_.read(coupling::Field::force, relative_dt, owned_values_);
-  MPI_Allgatherv(owned_values_.data(), static_cast<int>(owned_values_.size()), MPI_DOUBLE, gathered_.data(),
-                 counts_.data(), displacements_.data(), MPI_DOUBLE, comm_);
-  for (std::size_t p = 0; p < order_.size(); ++p)
-    for (std::size_t c = 0; c < 3; ++c) loads_[3 * order_[p] + c] = gathered_[3 * p + c];
+  loads_ = gathered(owned_values_);
   solver_.set_external_loads(loads_);
 }
 
@@ -159,6 +194,7 @@ nlohmann::json StructureCoupling::summary() const {
           {"impulse_applied_Ns", applied},
           {"largest_window_impulse_error_Ns", largest_difference},
           {"largest_window_impulse_Ns", largest_window_impulse},
+          {"added_mass_kg", added_mass_ > 0.0 ? nlohmann::json(added_mass_) : nlohmann::json(nullptr)},
           {"wait_s", timings.wait},
           {"work_s", timings.work}};
 }

@@ -60,6 +60,10 @@ class StructureCoupling {
   /// Reads the fluid's forces at relative_dt and sets them as the loads of
   /// every interface vertex (all-gather of the declared shares).
   void load_interface(double relative_dt);
+  /// coupling.added_mass: computed: the liquid's added-mass operator into the interface's inertia.
+  void carry_added_mass(ProgramContext& context);
+  /// Every interface vertex's values (3 each) from each rank's declared ones (all-gather).
+  [[nodiscard]] std::vector<double> gathered(const std::vector<double>& owned);
 
   StructureSolver& solver_;
   coupling::Participant participant_;
@@ -72,6 +76,7 @@ class StructureCoupling {
   MPI_Comm comm_;
   std::vector<double> reference_;  ///< interface displacements the fluid's walls start from (3 per vertex)
   bool hold_ = false;          ///< coupling.structure_load: window_average
+  double added_mass_ = 0.0;    ///< sum of the added-mass operator's entries (kg), coupling.added_mass: computed
   bool window_start_ = true;   ///< the next step starts a window
 };
 

@@ -134,7 +134,15 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
                    c.damping.first_mode, " and ", c.damping.second_mode, ": T = ", first.period, " s, ", second.period, " s)");
   StructureSolver solver(system, damping, c.loads, motion);
   const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
-  if (wetted) solver.set_interface(extract_interface(system.model().mesh, "wetted"));
+  if (wetted) {
+    // Wetted elements held fixed on every node (a bottom on its foundation)
+    // stay the fluid's rigid walls: the interface is what the liquid can move.
+    const DofMap& dofs = system.dofs();
+    const auto supported = [&dofs](int node) {
+      return dofs.equation(node, 0) < 0 && dofs.equation(node, 1) < 0 && dofs.equation(node, 2) < 0;
+    };
+    solver.set_interface(extract_interface(system.model().mesh, "wetted", supported));
+  }
   solver.prepare(c.time_step);
   std::optional<nlohmann::json> resumed;
   std::optional<coupling::CouplingRestartState> coupling_state;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,11 @@ struct InterfaceMesh {
 };
 
 /// Throws std::out_of_range if the mesh has no element set or region `name`.
-[[nodiscard]] InterfaceMesh extract_interface(const ShellMesh& mesh, const std::string& name);
+/// `supported(node)`, when given, names the nodes whose translations are all
+/// fixed: elements with every node supported cannot move and are left out (a
+/// tank bottom on its foundation is a rigid wall the fluid keeps as its own;
+/// the interface is the part of the wetted surface the liquid can move).
+[[nodiscard]] InterfaceMesh extract_interface(const ShellMesh& mesh, const std::string& name,
+                                              const std::function<bool(int)>& supported = {});
 
 }  // namespace tankfsi::fem

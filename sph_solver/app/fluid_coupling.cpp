@@ -1,6 +1,7 @@
 #include "sph_solver/app/fluid_coupling.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 #include "sph_solver/app/interface_wall.hpp"
 #include "coupling/settings.hpp"
@@ -60,13 +61,41 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
   wall_velocity_.assign(values_.size(), 0.0);
   participant_.set_restart_interval(context.config.real("output.checkpoint_interval"));
   if (resume) {
-    participant_.resume(*resume);
+    participant_.resume(*resume);  // the added mass, if any, is in the restart state
   } else {
+    if (coupling::read_coupling_settings(context.config).added_mass_operator) write_added_mass(context);
     write_forces(solver.present_wall_forces(ground_acceleration));
     participant_.initialize();
   }
   positions_ = reference_;
   velocities_.assign(reference_.size(), Eigen::Vector3d::Zero());
+}
+
+void FluidCoupling::write_added_mass(ProgramContext& context) {
+  // The operator over the interface's own vertices (the first coupled ones,
+  // in the interface's order), along the coupling's normals; the junction
+  // vertices that follow them neither push nor count (a few at the rim).
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<double> normal_values = participant_.interface_normals();
+  const std::size_t count = participant_.interface_mesh().vertex_count();
+  std::vector<int> vertices(coupled_.begin(), coupled_.begin() + static_cast<long>(count));
+  std::vector<Eigen::Vector3d> normals(count);
+  for (std::size_t v = 0; v < count; ++v) normals[v] = Eigen::Vector3d(normal_values[3 * v], normal_values[3 * v + 1], normal_values[3 * v + 2]);
+  std::vector<double> matrix = solver_.added_mass_operator(vertices, normals);
+  for (double& a : matrix) a *= force_scale_;  // a 2D section's impulses per unit depth -> on its depth
+  participant_.write_added_mass(matrix);
+  // The total for the log and the summary (sum of the operator's entries:
+  // the mass the whole surface moving outward at once carries along).
+  MPI_Allreduce(MPI_IN_PLACE, matrix.data(), static_cast<int>(matrix.size()), MPI_DOUBLE, MPI_SUM, solver_.comm());
+  double diagonal = 0.0;
+  added_mass_ = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    diagonal += matrix[i * count + i];
+    for (std::size_t j = 0; j < count; ++j) added_mass_ += matrix[i * count + j];
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  context.log.info("coupling: added-mass operator of the ", count, "-vertex wetted surface in ", seconds,
+                   " s: ", added_mass_, " kg moving outward together, ", diagonal, " kg each alone (sums)");
 }
 
 void FluidCoupling::before_step(double dt) {
@@ -112,6 +141,7 @@ nlohmann::json FluidCoupling::summary() const {
           {"coupled_wall_vertices", coupled_.size()},
           {"interface_vertices", participant_.interface_mesh().vertex_count()},
           {"largest_mapping_distance_m", mapping_distance_},
+          {"added_mass_kg", added_mass_ > 0.0 ? nlohmann::json(added_mass_) : nlohmann::json(nullptr)},
           {"section_depth_m", solver_.model().dimension == 2 ? nlohmann::json(force_scale_) : nlohmann::json(nullptr)},
           {"wait_s", timings.wait},
           {"work_s", timings.work}};

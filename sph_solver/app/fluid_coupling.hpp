@@ -65,6 +65,8 @@ class FluidCoupling {
 
  private:
   void write_forces(const std::vector<Eigen::Vector3d>& forces);
+  /// coupling.added_mass: computed: the wetted surface's added-mass operator to the coupling.
+  void write_added_mass(ProgramContext& context);
 
   FluidSolver& solver_;
   coupling::Participant participant_;
@@ -76,7 +78,8 @@ class FluidCoupling {
   std::vector<Eigen::Vector3d> positions_, velocities_;
   FluidSolver::Checkpoint checkpoint_;
   double mapping_distance_ = 0.0;
-  double force_scale_ = 1.0;  ///< the section depth in 2D (forces per unit depth -> on the section)
+  double force_scale_ = 1.0;
+  double added_mass_ = 0.0;  ///< sum of the added-mass operator's entries (kg), coupling.added_mass: computed  ///< the section depth in 2D (forces per unit depth -> on the section)
 };
 
 }  // namespace tankfsi::sph

@@ -254,6 +254,75 @@ std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vecto
   return forces;
 }
 
+std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertices,
+                                                     std::span<const Eigen::Vector3d> normals) {
+  if (vertices.size() != normals.size())
+    throw std::invalid_argument("added_mass_operator: " + std::to_string(normals.size()) + " normals for " +
+                                std::to_string(vertices.size()) + " vertices");
+  const std::size_t count = vertices.size();
+  halo_.build(comm_, decomposition_, particles_.position, kernel_.support_radius() + 0.5 * model_.spacing);
+  const int owned = particles_.count();
+  const auto mass = with_ghosts(halo_, particles_.mass);
+  const auto index = with_ghosts(halo_, global_indices());
+  Configuration now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
+  // The walls at rest; each column sets the velocity of the contacts on one vertex's triangles.
+  WallContacts& contacts = now.walls;
+  for (WallContact& c : contacts.contacts) c.velocity.setZero();
+  std::vector<int> column_of_vertex(walls_.mesh().vertex_count(), -1);
+  for (std::size_t j = 0; j < count; ++j) column_of_vertex[at(vertices[j])] = static_cast<int>(j);
+  struct Touch {
+    int contact;
+    int particle;
+    double weight;  ///< the vertex's barycentric weight at the contact's closest point
+  };
+  std::vector<std::vector<Touch>> touching(count);
+  for (int i = 0; i < owned; ++i)
+    for (int c = contacts.offsets[at(i)]; c < contacts.offsets[at(i) + 1]; ++c) {
+      const auto& triangle = walls_.mesh().triangles()[at(contacts.contacts[at(c)].triangle)];
+      for (int k = 0; k < 3; ++k)
+        if (const int j = column_of_vertex[at(triangle[at(k)])]; j >= 0)
+          touching[at(j)].push_back({c, i, contacts.contacts[at(c)].barycentric[k]});
+    }
+  Neighbourhood n{kernel_, model_, now.position, now.neighbours, contacts, walls_.mesh(), owned};
+  const auto kernel_sum = with_ghosts(halo_, kernel_density(n, mass));
+  const std::vector<SurfaceContact> air = surface_contacts(n, mass, kernel_sum, walls_);
+  n.surface = air;
+  const auto density =
+      with_ghosts(halo_, completed_density(kernel_sum, air, model_.density * walls_.table().lattice_share()));
+  ppe_.assemble(n, mass, density, index, std::vector<unsigned char>(mass.size(), 0));
+  // With dt = 1 and v* = 0 the projection's pressure is the pressure impulse
+  // and the walls' reaction (force times dt) the impulse on each vertex.
+  const double dt = 1.0;
+  const std::vector<Eigen::Vector3d> at_rest(at(owned), Eigen::Vector3d::Zero());
+  std::vector<double> matrix(count * count, 0.0);
+  std::vector<double> source(at(owned)), pressure;
+  std::vector<Eigen::Vector3d> impulse(walls_.mesh().vertex_count());
+  for (std::size_t j = 0; j < count; ++j) {
+    for (const Touch& t : touching[j]) contacts.contacts[at(t.contact)].velocity = t.weight * normals[j];
+    std::fill(source.begin(), source.end(), 0.0);
+    for (const Touch& t : touching[j]) source[at(t.particle)] = -wall_laplacian_share(n, t.particle, at_rest[0], dt);
+    pressure.assign(at(owned), 0.0);
+    ppe_.solve_assembled(source, pressure);
+    halo_.exchange(pressure);
+    std::fill(impulse.begin(), impulse.end(), Eigen::Vector3d::Zero());
+    static_cast<void>(pressure_acceleration(n, mass, density, pressure, at_rest, dt, impulse));
+    // The liquid pushes back against the motion: A_ij = -impulse_i . n_i.
+    for (std::size_t i = 0; i < count; ++i) matrix[i * count + j] = -impulse[at(vertices[i])].dot(normals[i]);
+    for (const Touch& t : touching[j]) contacts.contacts[at(t.contact)].velocity.setZero();
+  }
+  return matrix;
+}
+
+std::vector<std::int64_t> FluidSolver::global_indices() const {
+  long long offset = 0;
+  const long long count = particles_.count();
+  MPI_Exscan(&count, &offset, 1, MPI_LONG_LONG, MPI_SUM, comm_);
+  if (rank_ == 0) offset = 0;  // MPI_Exscan leaves rank 0's result undefined
+  std::vector<std::int64_t> index(at(particles_.count()));
+  for (int i = 0; i < particles_.count(); ++i) index[at(i)] = offset + i;
+  return index;
+}
+
 StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_acceleration) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("FluidSolver::step: dt must be positive");
   StepReport report;
@@ -277,14 +346,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   const int owned = particles_.count();
   const std::vector<Eigen::Vector3d> start = particles_.position;  // for the wall-crossing check
   std::fill(wall_force_.begin(), wall_force_.end(), Eigen::Vector3d::Zero());
-  std::vector<std::int64_t> global_index(at(owned));
-  {
-    long long offset = 0;
-    const long long count = owned;
-    MPI_Exscan(&count, &offset, 1, MPI_LONG_LONG, MPI_SUM, comm_);
-    if (rank_ == 0) offset = 0;  // MPI_Exscan leaves rank 0's result undefined
-    for (int i = 0; i < owned; ++i) global_index[at(i)] = offset + i;
-  }
+  const std::vector<std::int64_t> global_index = global_indices();
   const auto mass = with_ghosts(halo_, particles_.mass);
   const auto velocity_n = with_ghosts(halo_, particles_.velocity);
   const auto index = with_ghosts(halo_, global_index);

@@ -86,6 +86,17 @@ class FluidSolver {
   /// present velocities). The particles are not changed.
   [[nodiscard]] std::vector<Eigen::Vector3d> present_wall_forces(const Eigen::Vector3d& ground_acceleration);
 
+  /// Collective: this rank's share of the added-mass operator of the given
+  /// wall vertices (coupling/added_mass/added_mass.hpp), row-major
+  /// count x count, kg: A_ij = -(impulse of the liquid on vertex i) . n_i when
+  /// the walls, at rest under a liquid at rest, start moving at vertex j along
+  /// n_j at 1 m/s (its triangles' velocities interpolated as always): the
+  /// pressure impulse of one projection with the walls' Neumann condition
+  /// alone (METHOD.md §2). The PPE matrix is assembled once, one solve per
+  /// column. Particles and walls are left as they were.
+  [[nodiscard]] std::vector<double> added_mass_operator(std::span<const int> vertices,
+                                                        std::span<const Eigen::Vector3d> normals);
+
   /// Replaces the walls before the first step (a coupled run's wall, whose
   /// part on the structure's wetted surface is the structure's own mesh).
   void replace_walls(TriangleMesh walls) {
@@ -163,6 +174,8 @@ class FluidSolver {
 
  private:
   void remove_escaped();
+  /// Collective: the PPE's global row of each owned particle (ranks in order).
+  [[nodiscard]] std::vector<std::int64_t> global_indices() const;
   /// "step N at t = T s: " for the step starting at t.
   [[nodiscard]] std::string step_prefix(double t) const;
   /// Collective: throws std::runtime_error naming the step, the time and the

@@ -35,12 +35,19 @@ PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options)
 
 PressurePoisson::~PressurePoisson() {
   if (ksp_ != nullptr) KSPDestroy(&ksp_);
+  if (matrix_ != nullptr) MatDestroy(&matrix_);
 }
 
 PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const double> mass,
                                       std::span<const double> density, std::span<const std::int64_t> global_index,
                                       std::span<const unsigned char> dirichlet, std::span<const double> source,
                                       std::span<double> pressure) {
+  assemble(n, mass, density, global_index, dirichlet);
+  return solve_assembled(source, pressure);
+}
+
+void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
+                               std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet) {
   const int owned = n.owned;
   const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
   // The rows in CSR form, in buffers kept from step to step (no allocation once
@@ -74,9 +81,9 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
     row_begin_.push_back(static_cast<PetscInt>(values_.size()));
   }
 
-  Mat matrix = nullptr;
-  Vec rhs = nullptr;
-  Vec solution = nullptr;
+  if (matrix_ != nullptr) MatDestroy(&matrix_);
+  dirichlet_.assign(dirichlet.begin(), dirichlet.begin() + owned);
+  Mat& matrix = matrix_;
   check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, diagonal_nonzeros_.data(), 0,
                      off_diagonal_nonzeros_.data(), &matrix),
         "MatCreateAIJ");
@@ -91,21 +98,6 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
   check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 
-  check(MatCreateVecs(matrix, &solution, &rhs), "MatCreateVecs");
-  {
-    PetscScalar* b = nullptr;
-    PetscScalar* x = nullptr;
-    check(VecGetArray(rhs, &b), "VecGetArray");
-    check(VecGetArray(solution, &x), "VecGetArray");
-    for (int i = 0; i < owned; ++i) {
-      const bool surface = dirichlet[at(i)] != 0;
-      b[i] = surface ? 0.0 : -source[at(i)];
-      x[i] = surface ? 0.0 : pressure[at(i)];
-    }
-    check(VecRestoreArray(rhs, &b), "VecRestoreArray");
-    check(VecRestoreArray(solution, &x), "VecRestoreArray");
-  }
-
   // Particles migrate and leave: the local size changes between steps, which a
   // KSP only accepts after a reset (its options and type are kept). The reset is
   // collective and the operator's global size changes with any rank's: all ranks
@@ -116,6 +108,27 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
   if (changed != 0) check(KSPReset(ksp_), "KSPReset");
   solved_size_ = owned;
   check(KSPSetOperators(ksp_, matrix, matrix), "KSPSetOperators");
+}
+
+PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure) {
+  if (matrix_ == nullptr) throw std::logic_error("PressurePoisson::solve_assembled before assemble");
+  const int owned = solved_size_;
+  Vec rhs = nullptr;
+  Vec solution = nullptr;
+  check(MatCreateVecs(matrix_, &solution, &rhs), "MatCreateVecs");
+  {
+    PetscScalar* b = nullptr;
+    PetscScalar* x = nullptr;
+    check(VecGetArray(rhs, &b), "VecGetArray");
+    check(VecGetArray(solution, &x), "VecGetArray");
+    for (int i = 0; i < owned; ++i) {
+      const bool surface = dirichlet_[at(i)] != 0;
+      b[i] = surface ? 0.0 : -source[at(i)];
+      x[i] = surface ? 0.0 : pressure[at(i)];
+    }
+    check(VecRestoreArray(rhs, &b), "VecRestoreArray");
+    check(VecRestoreArray(solution, &x), "VecRestoreArray");
+  }
   const PetscErrorCode solve_code = KSPSolve(ksp_, rhs, solution);
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
   PpeSolveReport report;
@@ -132,7 +145,6 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
   }
   VecDestroy(&rhs);
   VecDestroy(&solution);
-  MatDestroy(&matrix);
   if (solve_code != 0) throw std::runtime_error("pressure solver failed with PETSc error " + std::to_string(solve_code));
   if (reason <= 0)
     throw std::runtime_error(std::string("pressure solver did not converge: ") + KSPConvergedReasons[reason] +

@@ -54,10 +54,19 @@ class PressurePoisson {
                        std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet,
                        std::span<const double> source, std::span<double> pressure);
 
+  /// solve() in two parts, for many right-hand sides of one operator (the
+  /// preconditioner is set up once): assemble the matrix of these particles,
+  /// then solve for each source (owned rows), `pressure` the warm start.
+  void assemble(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
+                std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet);
+  PpeSolveReport solve_assembled(std::span<const double> source, std::span<double> pressure);
+
  private:
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   int solved_size_ = -1;  ///< local rows of the last solve
+  Mat matrix_ = nullptr;  ///< the last assembled operator
+  std::vector<unsigned char> dirichlet_;  ///< its Dirichlet rows (owned)
   // Assembly buffers, reused from step to step: the rows in CSR form (global
   // columns) and the per-row counts for preallocation.
   std::vector<PetscInt> row_begin_;

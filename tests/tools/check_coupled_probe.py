@@ -7,7 +7,11 @@ of every window.
   check_coupled_probe.py --case CASE --probe structure:midspan:displacement_m
       --mean-after 0.1 --reference -7.30e-5 --tolerance 0.03
       [--fluid-ranks 1] [--structure-ranks 1] [--also-ranks 2:1 --agreement 1e-3]
-      [--impulse-round-off 1e-9] [--set KEY=VALUE ...] --folder DIR
+      [--impulse-round-off 1e-9] [--set KEY=VALUE ...] [--coupling YAML] --folder DIR
+
+--coupling replaces the case's whole coupling section (a YAML mapping): a
+scheme that does without keys the case sets (the implicit ones) cannot be
+had with --set.
 
 Prints every figure it checks (the case README's tables come from them).
 """
@@ -17,7 +21,7 @@ import shutil
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts" / "post"))
-from coupled_run import report, run_coupled  # noqa: E402
+from coupled_run import derived_case, report, run_coupled  # noqa: E402
 
 
 def settled_mean(run, side, name, column, after):
@@ -48,10 +52,15 @@ def main():
                         help="each window's impulse applied by the structure equals the impulse the fluid gave "
                              "within this fraction of the largest window impulse")
     parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--coupling", help="the coupling section, as a YAML mapping, instead of the case's")
     args = parser.parse_args()
     side, name, column = args.probe.split(":")
     folder = pathlib.Path(args.folder)
     shutil.rmtree(folder, ignore_errors=True)
+    case = args.case
+    if args.coupling:
+        import yaml
+        case = derived_case(args.case, folder / "case", sections={"coupling": yaml.safe_load(args.coupling)})
 
     failures = []
     runs = [(args.fluid_ranks, args.structure_ranks)]
@@ -59,7 +68,7 @@ def main():
     first_probe = None
     for fluid_ranks, structure_ranks in runs:
         label = f"{fluid_ranks}:{structure_ranks}"
-        run = run_coupled(args.case, folder / label.replace(":", "x"), args.set, fluid_ranks, structure_ranks,
+        run = run_coupled(case, folder / label.replace(":", "x"), args.set, fluid_ranks, structure_ranks,
                           args.sph, args.fem, launcher=(args.mpiexec, "--oversubscribe"))
         if run.status != 0 or run.structure is None:
             print(run.output[-4000:])

@@ -91,6 +91,17 @@ int tankfsi_requires_reading_checkpoint(tankfsi_participant* participant);
 int tankfsi_window_completed(const tankfsi_participant* participant);
 int tankfsi_finalize(tankfsi_participant* participant);
 
+/* Added mass (coupling.added_mass: computed; PROTOCOL.md, "Added mass").
+ * The whole interface's n vertices in ascending id order throughout.
+ * Fluid, after the exchange: the unit normal of each vertex (3n values).
+ * Fluid, before initialize: the operator A (n x n, row-major, kg; each rank
+ * its partial sums). Structure, after initialize: the normals (3n values) and
+ * the rows of A for its own vertices (own x n values, declaration order). */
+int tankfsi_interface_normals(const tankfsi_participant* participant, double* normals, size_t count);
+int tankfsi_write_added_mass(tankfsi_participant* participant, const double* matrix, size_t count);
+int tankfsi_added_mass(const tankfsi_participant* participant, double* normals, size_t normal_count, double* rows,
+                       size_t row_count);
+
 #ifdef __cplusplus
 }
 #endif

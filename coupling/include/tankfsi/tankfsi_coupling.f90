@@ -97,5 +97,26 @@ module tankfsi_coupling
       import :: c_ptr, c_int
       type(c_ptr), value :: participant
     end function
+    ! Added mass (coupling.added_mass: computed; PROTOCOL.md, "Added mass").
+    integer(c_int) function tankfsi_interface_normals(participant, normals, count) bind(C)
+      import :: c_ptr, c_int, c_double, c_size_t
+      type(c_ptr), value :: participant
+      real(c_double), dimension(*) :: normals
+      integer(c_size_t), value :: count
+    end function
+    integer(c_int) function tankfsi_write_added_mass(participant, matrix, count) bind(C)
+      import :: c_ptr, c_int, c_double, c_size_t
+      type(c_ptr), value :: participant
+      real(c_double), dimension(*) :: matrix
+      integer(c_size_t), value :: count
+    end function
+    integer(c_int) function tankfsi_added_mass(participant, normals, normal_count, rows, row_count) bind(C)
+      import :: c_ptr, c_int, c_double, c_size_t
+      type(c_ptr), value :: participant
+      real(c_double), dimension(*) :: normals
+      integer(c_size_t), value :: normal_count
+      real(c_double), dimension(*) :: rows
+      integer(c_size_t), value :: row_count
+    end function
   end interface
 end module tankfsi_coupling

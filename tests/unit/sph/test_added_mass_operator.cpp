@@ -1,0 +1,87 @@
+// FluidSolver::added_mass_operator against potential flow: a side wall of a
+// 2D rectangular tank (width L, liquid depth h, free surface) that starts
+// moving into the liquid at unit speed meets the pressure impulse of the
+// potential phi with dphi/dx = 1 on the wall, 0 on the far wall and the
+// floor, phi = 0 on the surface:
+//   phi = sum_n a_n cos(k_n y) cosh(k_n (L - x)),  k_n = (2n - 1) pi / (2h),
+// and the impulse on the wall per unit depth, the wall's added mass, is
+//   m_a = rho (2/h) sum_n coth(k_n L) / k_n^3
+// (0.543 rho h^2 for a wall on an endless reservoir, Westergaard's figure).
+#include <catch2/catch.hpp>
+
+#include <mpi.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "sph_solver/isph/fluid_solver.hpp"
+#include "sph_solver/particles/filling.hpp"
+#include "sph_solver/walls/tank_meshes.hpp"
+#include "tests/unit/sph/still_tank.hpp"
+
+using namespace tankfsi::sph;
+
+namespace {
+
+double potential_flow_added_mass(double rho, double width, double depth) {
+  double sum = 0.0;
+  for (int n = 1; n <= 2000; ++n) {
+    const double k = (2.0 * n - 1.0) * std::numbers::pi / (2.0 * depth);
+    sum += 1.0 / (std::tanh(k * width) * k * k * k);
+  }
+  return rho * 2.0 / depth * sum;
+}
+
+}  // namespace
+
+TEST_CASE("the added-mass operator of a tank's side wall matches potential flow", "[added_mass]") {
+  const FluidModel model = tankfsi::test::water();
+  const double width = tankfsi::test::width, level = tankfsi::test::level;
+  const TriangleMesh walls = make_rectangular_tank_2d(width, 0.6, 0.2, 0.04);
+  FillSpec spec;
+  spec.spacing = model.spacing;
+  spec.density = model.density;
+  spec.fill_level = level;
+  spec.dimension = 2;
+  spec.hydrostatic_pressure = true;
+  spec.gravity = tankfsi::test::g;
+  Eigen::AlignedBox3d domain = walls.bounding_box();
+  domain.min().array() -= 2.0;
+  domain.max().array() += 2.0;
+  FluidSolver solver(MPI_COMM_WORLD, model, walls, fill_tank(walls, spec), domain, "-ppe_ksp_rtol 1e-10");
+
+  // The wall x = 0 (both rows of its extruded vertices), pushed along +x, into the liquid.
+  std::vector<int> wall;
+  std::vector<Eigen::Vector3d> normals;
+  for (std::size_t v = 0; v < walls.vertex_count(); ++v)
+    if (std::abs(walls.vertices()[v].x()) < 1e-12) {
+      wall.push_back(static_cast<int>(v));
+      normals.emplace_back(1.0, 0.0, 0.0);
+    }
+  REQUIRE(wall.size() >= 4);
+  std::vector<double> matrix = solver.added_mass_operator(wall, normals);
+  MPI_Allreduce(MPI_IN_PLACE, matrix.data(), static_cast<int>(matrix.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  const std::size_t n = wall.size();
+  double total = 0.0, asymmetry = 0.0, size = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      total += matrix[i * n + j];
+      asymmetry = std::max(asymmetry, std::abs(matrix[i * n + j] - matrix[j * n + i]));
+      size = std::max(size, std::abs(matrix[i * n + j]));
+      CHECK(matrix[i * n + j] >= -1e-9 * size);  // pushing anywhere raises the pressure everywhere
+    }
+  const double expected = potential_flow_added_mass(model.density, width, level);
+  CAPTURE(total, expected, asymmetry / size);
+  // L0 = h / 20: measured 88.25 kg/m against 88.34 (-0.1 %); 1 % allows for
+  // the rank count's round-off and keeps a wrong factor (the wall's share, a
+  // lost free surface, the depth) out by far.
+  CHECK(total == Approx(expected).epsilon(0.01));
+  // The discrete operator is nearly symmetric (measured 1.7 % of the largest
+  // entry: the wall terms' pressure gradient is not the transpose of their
+  // Neumann source); the coupling takes its symmetric part.
+  CHECK(asymmetry < 0.02 * size);
+  // The particles and walls are left as they were: a step afterwards sees a tank at rest.
+  const StepReport step = solver.step(0.0, 1e-3, Eigen::Vector3d::Zero());
+  CHECK(step.max_speed < 1e-3);
+}
