@@ -22,23 +22,32 @@ def _save(figure, path):
     return path
 
 
+def _change_history(path, title, ylabel, curves):
+    """One panel of changes from t = 0: curves are (time, values, label)."""
+    figure, axis = plt.subplots(figsize=(9, 4))
+    for time, values, label in curves:
+        axis.plot(time, values, linewidth=0.9, label=label)
+    axis.axhline(0, color="0.5", linewidth=0.6)
+    axis.set_xlabel("time (s)")
+    axis.set_ylabel(ylabel)
+    axis.set_title(title)
+    axis.grid(True, alpha=0.3)
+    axis.legend(fontsize=8)
+    return _save(figure, path)
+
+
 def wave_heights(run, path):
     """eta = surface - surface at rest of every wave probe."""
     probes = run.probes("fluid", "wave_height")
     if not probes:
         return None
-    figure, axis = plt.subplots(figsize=(9, 4))
+    curves = []
     for name, position, record, _ in probes:
         surface = position[2] + record["wave_height_m"]
-        axis.plot(record["time_s"], surface - surface[0], linewidth=0.9,
-                  label=f"{name} (r = {np.hypot(*position[:2]):.1f} m, at rest {surface[0]:.3f} m)")
-    axis.axhline(0, color="0.5", linewidth=0.6)
-    axis.set_xlabel("time (s)")
-    axis.set_ylabel("wave height eta (m)")
-    axis.set_title("Wave height at the wave probes: free surface minus its height at t = 0")
-    axis.grid(True, alpha=0.3)
-    axis.legend(fontsize=8)
-    return _save(figure, path)
+        curves.append((record["time_s"], surface - surface[0],
+                       f"{name} (r = {np.hypot(*position[:2]):.1f} m, at rest {surface[0]:.3f} m)"))
+    return _change_history(path, "Wave height at the wave probes: free surface minus its height at t = 0",
+                           "wave height eta (m)", curves)
 
 
 def wall_pressures(run, path):
@@ -46,18 +55,12 @@ def wall_pressures(run, path):
     probes = run.probes("fluid", "pressure")
     if not probes:
         return None
-    figure, axis = plt.subplots(figsize=(9, 4))
+    curves = []
     for name, position, record, _ in probes:
         pressure = record["pressure_Pa"]
-        axis.plot(record["time_s"], (pressure - pressure[0]) / 1e3, linewidth=0.9,
-                  label=f"{name} (z = {position[2]:g} m, p(0) = {pressure[0] / 1e3:.1f} kPa)")
-    axis.axhline(0, color="0.5", linewidth=0.6)
-    axis.set_xlabel("time (s)")
-    axis.set_ylabel("p - p(0) (kPa)")
-    axis.set_title("Wall pressure at the pressure probes: change from t = 0")
-    axis.grid(True, alpha=0.3)
-    axis.legend(fontsize=8)
-    return _save(figure, path)
+        curves.append((record["time_s"], (pressure - pressure[0]) / 1e3,
+                       f"{name} (z = {position[2]:g} m, p(0) = {pressure[0] / 1e3:.1f} kPa)"))
+    return _change_history(path, "Wall pressure at the pressure probes: change from t = 0", "p - p(0) (kPa)", curves)
 
 
 def _period_lines(axis, theory, periods):

@@ -16,8 +16,6 @@
 #include <vector>
 
 #include "sph_solver/isph/fluid_solver.hpp"
-#include "sph_solver/particles/filling.hpp"
-#include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
 
 using namespace tankfsi::sph;
@@ -36,20 +34,14 @@ double potential_flow_added_mass(double rho, double width, double depth) {
 }  // namespace
 
 TEST_CASE("the added-mass operator of a tank's side wall matches potential flow", "[added_mass]") {
-  const FluidModel model = tankfsi::test::water();
+  const tankfsi::test::Tank tank;  // L = 0.6 m, h = 0.4 m, L0 = 0.02 m, at rest
+  const FluidModel& model = tank.model;
   const double width = tankfsi::test::width, level = tankfsi::test::level;
-  const TriangleMesh walls = make_rectangular_tank_2d(width, 0.6, 0.2, 0.04);
-  FillSpec spec;
-  spec.spacing = model.spacing;
-  spec.density = model.density;
-  spec.fill_level = level;
-  spec.dimension = 2;
-  spec.hydrostatic_pressure = true;
-  spec.gravity = tankfsi::test::g;
+  const TriangleMesh& walls = tank.walls.mesh();
   Eigen::AlignedBox3d domain = walls.bounding_box();
   domain.min().array() -= 2.0;
   domain.max().array() += 2.0;
-  FluidSolver solver(MPI_COMM_WORLD, model, walls, fill_tank(walls, spec), domain, "-ppe_ksp_rtol 1e-10");
+  FluidSolver solver(MPI_COMM_WORLD, model, walls, tank.particles, domain, "-ppe_ksp_rtol 1e-10");
 
   // The wall x = 0 (both rows of its extruded vertices), pushed along +x, into the liquid.
   std::vector<int> wall;
