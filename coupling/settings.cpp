@@ -42,8 +42,9 @@ std::map<std::string, std::string> CouplingSettings::as_map() const {
       {"coupling.time_window", exact_text(time_window)},
       {"end_time", exact_text(end_time)},
       {"coupling.structure_load", hold_window_average ? "window_average" : "ramp"},
-      {"coupling.added_mass", added_mass_operator ? "computed" : "none"},
   };
+  // Only when used: a 2.0 partner, which knows no added mass, still couples without it.
+  if (added_mass_operator) m["coupling.added_mass"] = "computed";
   if (!hold_window_average) m["coupling.ramp_chi"] = exact_text(ramp_chi);
   if (scheme != Scheme::parallel_staggered) m["coupling.first"] = side_name(first);
   if (is_implicit()) {

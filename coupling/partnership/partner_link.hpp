@@ -117,6 +117,6 @@ class PartnerLink {
 
 /// The protocol version this library speaks (PROTOCOL.md, "Versioning").
 constexpr int protocol_major = 2;
-constexpr int protocol_minor = 0;
+constexpr int protocol_minor = 1;
 
 }  // namespace tankfsi::coupling
