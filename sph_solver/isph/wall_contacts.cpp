@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "sph_solver/walls/closest_point.hpp"
@@ -31,6 +32,18 @@ Eigen::Vector3d interpolate(const TriangleMesh& mesh, const std::vector<Eigen::V
                             const Eigen::Vector3d& w) {
   const auto& tri = mesh.triangles()[at(t)];
   return w[0] * values[at(tri[0])] + w[1] * values[at(tri[1])] + w[2] * values[at(tri[2])];
+}
+
+/// The smooth wall's normal at barycentric w of triangle t; `plane` (the
+/// triangle's own, as the contact uses it) where all three corners have it.
+Eigen::Vector3d smooth_normal(const WallCornerValues& corners, int t, const Eigen::Vector3d& w,
+                              const Eigen::Vector3d& plane, int dimension) {
+  const auto& n = corners.normals[at(t)];
+  Eigen::Vector3d normal = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
+  if (dimension == 2) normal.z() = 0.0;
+  if (!(normal.norm() > 0.5)) return plane;  // corners on opposite walls: cannot happen on a manifold mesh
+  normal.normalize();
+  return (normal - plane).squaredNorm() < 1e-24 ? plane : normal;
 }
 
 }  // namespace
@@ -64,7 +77,10 @@ void WallModel::move(std::span<const Eigen::Vector3d> positions, std::span<const
 void WallModel::update_curvature() {
   compute_vertex_mean_curvature(*mesh_, curvature_);
   for (double& h : curvature_)
-    if (!(std::abs(h) * support_radius_ <= resolvable_curvature)) h = 0.0;
+    if (!(std::abs(h) * support_radius_ <= resolvable_curvature)) h = std::numeric_limits<double>::quiet_NaN();
+  corner_values_ = wall_corner_values(*mesh_, curvature_, same_wall_cosine);
+  for (double& h : curvature_)
+    if (std::isnan(h)) h = 0.0;
 }
 
 WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension) {
@@ -102,9 +118,11 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       WallContact contact;
       contact.triangle = hit.triangle;
       contact.barycentric = hit.closest.barycentric;
-      contact.normal = normal;
+      contact.normal = smooth_normal(walls.corner_values(), hit.triangle, contact.barycentric, normal, dimension);
       contact.distance = height <= 0.0 ? 0.0 : std::sqrt(hit.closest.squared_distance);
-      const double h = interpolate_vertex_values(mesh, walls.curvature(), hit.triangle, contact.barycentric);
+      const auto& corner_h = walls.corner_values().curvature[at(hit.triangle)];
+      const Eigen::Vector3d& w = contact.barycentric;
+      const double h = w[0] * corner_h[0] + w[1] * corner_h[1] + w[2] * corner_h[2];
       contact.values = curved(walls.table().at(contact.distance), h);
       contact.velocity = interpolate(mesh, walls.vertex_velocities(), hit.triangle, contact.barycentric);
       result.contacts.push_back(contact);

@@ -15,7 +15,10 @@
 // every virtual particle counts once; overlaps of walls at other angles are not.
 //
 // Distance (eq 15): the true point-triangle distance to the nearest triangle of the
-// wall, the normal that of its plane. A particle that has crossed a wall by less
+// wall; the normal that of the smooth wall the facets approximate, interpolated at
+// the closest point from the triangle's corner normals (wall_corner_values.hpp: a
+// flat wall keeps its plane's normal exactly). Which wall a triangle belongs to and
+// which side of it the particle is on go by the triangle's own plane. A particle that has crossed a wall by less
 // than L0/2 is treated as touching it (distance 0), so the strongest wall terms push
 // it back; one further behind is not in contact (it has left through the wall).
 //
@@ -25,7 +28,9 @@
 // towards the fluid; the same factor for the curve of a 2D section, where H = κ/2).
 // Each Z_k is therefore scaled by (1 - 2 H d_k), d_k its representative depth.
 // Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
-// (sharp edges and corners, which the per-wall contacts already handle) H is set to 0.
+// (sharp edges and corners, which the per-wall contacts already handle) each
+// triangle takes its own wall's curvature from the neighbouring vertices
+// (wall_corner_values.hpp), so a cylinder's wall keeps 1/(2R) down to its foot.
 #include <Eigen/Core>
 
 #include <memory>
@@ -38,6 +43,7 @@
 #include "sph_solver/walls/triangle_index.hpp"
 #include "sph_solver/walls/corner_kernel_table.hpp"
 #include "sph_solver/walls/triangle_mesh.hpp"
+#include "sph_solver/walls/wall_corner_values.hpp"
 #include "sph_solver/walls/wall_kernel_table.hpp"
 
 namespace tankfsi::sph {
@@ -55,6 +61,8 @@ class WallModel {
   [[nodiscard]] const CornerKernelTable& corner_table() const { return corner_table_; }
   /// Mean curvature per vertex, sharp features zeroed (see above).
   [[nodiscard]] const std::vector<double>& curvature() const { return curvature_; }
+  /// Normal and curvature of each triangle's own wall at its corners (see above).
+  [[nodiscard]] const WallCornerValues& corner_values() const { return corner_values_; }
   [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_velocities() const { return velocities_; }
 
   /// Moves the wall (a deforming structure): positions and velocities per vertex,
@@ -74,6 +82,7 @@ class WallModel {
   CornerKernelTable corner_table_;
   double support_radius_;
   std::vector<double> curvature_;
+  WallCornerValues corner_values_;
   std::vector<Eigen::Vector3d> velocities_;
 };
 
