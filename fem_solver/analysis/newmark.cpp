@@ -6,12 +6,26 @@
 
 namespace tankfsi::fem {
 
+TimeIntegrationRule TimeIntegrationRule::generalized_alpha(double spectral_radius) {
+  if (!(spectral_radius >= 0.0 && spectral_radius <= 1.0))
+    throw std::invalid_argument("the generalized-alpha spectral radius must lie in [0, 1]");
+  if (spectral_radius == 1.0) return average_acceleration();
+  const double rho = spectral_radius;
+  TimeIntegrationRule rule;
+  rule.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+  rule.alpha_f = rho / (rho + 1.0);
+  rule.gamma = 0.5 - rule.alpha_m + rule.alpha_f;
+  rule.beta = 0.25 * (1.0 - rule.alpha_m + rule.alpha_f) * (1.0 - rule.alpha_m + rule.alpha_f);
+  return rule;
+}
+
 NewmarkIntegrator::NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping,
-                                     SolverFactory factory)
-    : k_(stiffness), m_(mass_diagonal), damping_(damping), factory_(std::move(factory)) {
-  for (PetscVector* v : {&u_, &v_, &a_, &rhs_, &work_, &work2_, &a_new_, &u_new_, &ku_, &kv_, &ka_, &ka_new_})
+                                     SolverFactory factory, TimeIntegrationRule rule)
+    : k_(stiffness), m_(mass_diagonal), damping_(damping), rule_(rule), factory_(std::move(factory)) {
+  for (PetscVector* v :
+       {&u_, &v_, &a_, &rhs_, &work_, &work2_, &a_new_, &u_new_, &ku_, &kv_, &ka_, &ka_new_, &load_})
     petsc_check(VecDuplicate(m_, v->out()), "VecDuplicate");
-  for (PetscVector* v : {&u_, &v_, &a_, &ku_, &kv_, &ka_}) petsc_check(VecSet(v->get(), 0.0), "VecSet");
+  for (PetscVector* v : {&u_, &v_, &a_, &ku_, &kv_, &ka_, &load_}) petsc_check(VecSet(v->get(), 0.0), "VecSet");
 }
 
 void NewmarkIntegrator::damping_times(Vec x, Vec out) const {
@@ -25,6 +39,7 @@ void NewmarkIntegrator::damping_times(Vec x, Vec out) const {
 void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
   if (displacement != u_.get()) petsc_check(VecCopy(displacement, u_.get()), "VecCopy");
   if (velocity != v_.get()) petsc_check(VecCopy(velocity, v_.get()), "VecCopy");
+  if (load != load_.get()) petsc_check(VecCopy(load, load_.get()), "VecCopy");
   // a = M^-1 (F - K u - C v)
   petsc_check(MatMult(k_, u_.get(), ku_.get()), "MatMult");
   petsc_check(VecWAXPY(rhs_.get(), -1.0, ku_.get(), load), "VecWAXPY");
@@ -53,7 +68,10 @@ void NewmarkIntegrator::set_added_mass(Mat added_mass) {
 }
 
 void NewmarkIntegrator::factorise(double dt) {
-  const double a0 = 1.0 / (beta * dt * dt);
+  const double gamma = rule_.gamma;
+  const double beta = rule_.beta;
+  // c_m a0: the inertia's share of K_eff after dividing by (1 - alpha_f) (see the header).
+  const double a0 = (1.0 - rule_.alpha_m) / (1.0 - rule_.alpha_f) / (beta * dt * dt);
   const double a1 = gamma / (beta * dt);
   petsc_check(MatDuplicate(k_, MAT_COPY_VALUES, effective_.out()), "MatDuplicate");
   petsc_check(MatScale(effective_.get(), 1.0 + a1 * damping_.beta), "MatScale");
@@ -77,6 +95,8 @@ void NewmarkIntegrator::prepare(double dt) {
 
 void NewmarkIntegrator::step(double dt, Vec load) {
   prepare(dt);
+  const double gamma = rule_.gamma;
+  const double beta = rule_.beta;
   const double a0 = 1.0 / (beta * dt * dt);
   const double a1 = gamma / (beta * dt);
   const double a2 = 1.0 / (beta * dt);
@@ -85,21 +105,31 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   const double a5 = dt / 2.0 * (gamma / beta - 2.0);
   const double alpha = damping_.alpha;
   const double beta_r = damping_.beta;
-  // rhs = F + M (a0 u + a2 v + a3 a) + C (a1 u + a4 v + a5 a), C = alpha M + beta_R K:
-  //     = F + M ((a0 + alpha a1) u + (a2 + alpha a4) v + (a3 + alpha a5) a)
-  //         + beta_R (a1 K u + a4 K v + a5 K a)
-  petsc_check(VecAXPBYPCZ(work_.get(), a0 + alpha * a1, a2 + alpha * a4, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
-  petsc_check(VecAXPY(work_.get(), a3 + alpha * a5, a_.get()), "VecAXPY");
+  // Generalized alpha, divided by (1 - alpha_f): the inertia terms carry c_m =
+  // (1 - alpha_m)/(1 - alpha_f) and the old acceleration alpha_m/(1 - alpha_f);
+  // the state at t_n enters with r = alpha_f/(1 - alpha_f): + r (F_n - K u_n - C v_n).
+  // All three vanish (c_m = 1) for average acceleration.
+  const double cm = (1.0 - rule_.alpha_m) / (1.0 - rule_.alpha_f);
+  const double am = rule_.alpha_m / (1.0 - rule_.alpha_f);
+  const double r = rule_.alpha_f / (1.0 - rule_.alpha_f);
+  const bool k_products = beta_r != 0.0 || r != 0.0;
+  // rhs = F + r (F_n - K u - C v) + M (cm (a0 u + a2 v + a3 a) - am a) + C (a1 u + a4 v + a5 a)
+  //       + M_a (cm (a0 u + a2 v + a3 a) - am a),  C = alpha M + beta_R K:
+  //     = F + r F_n + M ((cm a0 + alpha a1) u + (cm a2 + alpha (a4 - r)) v + (cm a3 - am + alpha a5) a)
+  //         + beta_R (a1 K u + (a4 - r) K v + a5 K a) - r K u + M_a (...)
+  petsc_check(VecAXPBYPCZ(work_.get(), cm * a0 + alpha * a1, cm * a2 + alpha * (a4 - r), 0.0, u_.get(), v_.get()),
+              "VecAXPBYPCZ");
+  petsc_check(VecAXPY(work_.get(), cm * a3 - am + alpha * a5, a_.get()), "VecAXPY");
   petsc_check(VecPointwiseMult(rhs_.get(), m_, work_.get()), "VecPointwiseMult");
   petsc_check(VecAXPY(rhs_.get(), 1.0, load), "VecAXPY");
+  if (r != 0.0) petsc_check(VecAXPY(rhs_.get(), r, load_.get()), "VecAXPY");
   if (added_mass_ != nullptr) {
-    // + M_a (a0 u + a2 v + a3 a)
-    petsc_check(VecAXPBYPCZ(work_.get(), a0, a2, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
-    petsc_check(VecAXPY(work_.get(), a3, a_.get()), "VecAXPY");
+    petsc_check(VecAXPBYPCZ(work_.get(), cm * a0, cm * a2, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
+    petsc_check(VecAXPY(work_.get(), cm * a3 - am, a_.get()), "VecAXPY");
     petsc_check(MatMultAdd(added_mass_, work_.get(), rhs_.get(), rhs_.get()), "MatMultAdd");
   }
-  if (beta_r != 0.0) {
-    const PetscScalar weights[3] = {beta_r * a1, beta_r * a4, beta_r * a5};
+  if (k_products) {
+    const PetscScalar weights[3] = {beta_r * a1 - r, beta_r * (a4 - r), beta_r * a5};
     Vec products[3] = {ku_.get(), kv_.get(), ka_.get()};
     petsc_check(VecMAXPY(rhs_.get(), 3, weights, products), "VecMAXPY");
   }
@@ -111,14 +141,15 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   petsc_check(VecWAXPY(a_new_.get(), -1.0, u_.get(), u_new_.get()), "VecWAXPY");
   petsc_check(VecAXPBYPCZ(a_new_.get(), -a2, -a3, a0, v_.get(), a_.get()), "VecAXPBYPCZ");
   petsc_check(VecAXPBYPCZ(v_.get(), dt * (1.0 - gamma), dt * gamma, 1.0, a_.get(), a_new_.get()), "VecAXPBYPCZ");
-  if (beta_r != 0.0) {
-    // K u_new = (rhs - (a0 + a1 alpha) M u_new - a0 M_a u_new) / (1 + a1 beta_R); then K a and K v as a and v.
+  if (k_products) {
+    // K u_new = (rhs - (cm a0 + a1 alpha) M u_new - cm a0 M_a u_new) / (1 + a1 beta_R); then K a and K v as a and v.
+    const double inertia = cm * a0 + a1 * alpha;
     petsc_check(VecPointwiseMult(work_.get(), m_, u_new_.get()), "VecPointwiseMult");
     if (added_mass_ != nullptr) {
       petsc_check(MatMult(added_mass_, u_new_.get(), work2_.get()), "MatMult");
-      petsc_check(VecAXPY(work_.get(), a0 / (a0 + a1 * alpha), work2_.get()), "VecAXPY");
+      petsc_check(VecAXPY(work_.get(), cm * a0 / inertia, work2_.get()), "VecAXPY");
     }
-    petsc_check(VecAXPBY(work_.get(), 1.0 / (1.0 + a1 * beta_r), -(a0 + a1 * alpha) / (1.0 + a1 * beta_r), rhs_.get()),
+    petsc_check(VecAXPBY(work_.get(), 1.0 / (1.0 + a1 * beta_r), -inertia / (1.0 + a1 * beta_r), rhs_.get()),
                 "VecAXPBY");
     petsc_check(VecWAXPY(ka_new_.get(), -1.0, ku_.get(), work_.get()), "VecWAXPY");
     petsc_check(VecAXPBYPCZ(ka_new_.get(), -a2, -a3, a0, kv_.get(), ka_.get()), "VecAXPBYPCZ");
@@ -128,6 +159,7 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   }
   std::swap(a_, a_new_);
   std::swap(u_, u_new_);
+  if (load != load_.get()) petsc_check(VecCopy(load, load_.get()), "VecCopy");
 }
 
 double NewmarkIntegrator::energy() const {
@@ -141,8 +173,9 @@ double NewmarkIntegrator::energy() const {
 }
 
 void NewmarkIntegrator::save(NewmarkState& state) const {
-  const std::pair<const PetscVector*, PetscVector*> pairs[] = {{&u_, &state.u},   {&v_, &state.v},   {&a_, &state.a},
-                                                               {&ku_, &state.ku}, {&kv_, &state.kv}, {&ka_, &state.ka}};
+  const std::pair<const PetscVector*, PetscVector*> pairs[] = {
+      {&u_, &state.u}, {&v_, &state.v}, {&a_, &state.a}, {&ku_, &state.ku}, {&kv_, &state.kv}, {&ka_, &state.ka},
+      {&load_, &state.f}};
   for (const auto& [from, to] : pairs) {
     if (!*to) petsc_check(VecDuplicate(from->get(), to->out()), "VecDuplicate");
     petsc_check(VecCopy(from->get(), to->get()), "VecCopy");
@@ -150,8 +183,9 @@ void NewmarkIntegrator::save(NewmarkState& state) const {
 }
 
 void NewmarkIntegrator::restore(const NewmarkState& state) {
-  const std::pair<const PetscVector*, PetscVector*> pairs[] = {{&state.u, &u_},   {&state.v, &v_},   {&state.a, &a_},
-                                                               {&state.ku, &ku_}, {&state.kv, &kv_}, {&state.ka, &ka_}};
+  const std::pair<const PetscVector*, PetscVector*> pairs[] = {
+      {&state.u, &u_}, {&state.v, &v_}, {&state.a, &a_}, {&state.ku, &ku_}, {&state.kv, &kv_}, {&state.ka, &ka_},
+      {&state.f, &load_}};
   for (const auto& [from, to] : pairs) {
     if (!*from) throw std::logic_error("NewmarkIntegrator::restore: no state saved");
     petsc_check(VecCopy(from->get(), to->get()), "VecCopy");

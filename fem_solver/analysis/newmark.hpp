@@ -1,16 +1,22 @@
 #pragma once
 // NewmarkIntegrator: M a + C v + K u = F(t) with the average-acceleration rule
 // (gamma = 1/2, beta = 1/4: unconditionally stable, no numerical damping,
-// METHOD.md §3), C = alpha M + beta_R K, M lumped (diagonal). The effective
-// matrix K_eff = (1 + a1 beta_R) K + (a0 + a1 alpha) M, a0 = 1/(beta dt^2),
-// a1 = gamma/(beta dt), is assembled and factorised once per time step size
-// and reused every step; a new dt refactorises.
+// METHOD.md §3), or the generalized-alpha rule of Chung & Hulbert (1993),
+// which damps the modes a step cannot resolve and keeps second order: the
+// equation holds between the steps,
+//   M a_{n+1-am} + C v_{n+1-af} + K u_{n+1-af} = F_{n+1-af},  x_{n+1-a} = (1-a) x_{n+1} + a x_n,
+// with Newmark's updates of u and v (TimeIntegrationRule). C = alpha M +
+// beta_R K, M lumped (diagonal). Divided by (1 - af), the effective matrix is
+// K_eff = (1 + a1 beta_R) K + (c_m a0 + a1 alpha) M, c_m = (1 - am)/(1 - af),
+// a0 = 1/(beta dt^2), a1 = gamma/(beta dt) (c_m = 1 for average acceleration);
+// it is assembled and factorised once per time step size and reused every
+// step; a new dt refactorises.
 //
 // A step costs one pair of triangular solves and vector operations, no
 // product with K: the stiffness part of the damping term of the right-hand
 // side, beta_R K (a1 u + a4 v + a5 a), uses K u, K v and K a carried along
 // with the state. K u_new follows from the solve itself,
-// K_eff u_new = rhs  =>  K u_new = (rhs - (a0 + a1 alpha) M u_new) / (1 + a1 beta_R),
+// K_eff u_new = rhs  =>  K u_new = (rhs - (c_m a0 + a1 alpha) M u_new) / (1 + a1 beta_R),
 // and K v, K a from the same linear updates as v and a. Each is as accurate
 // as a product with K (a direct solve's residual is of the size of a
 // product's rounding), and no product means no pass over K's 2e6 entries.
@@ -29,20 +35,37 @@
 
 namespace tankfsi::fem {
 
+/// Newmark's gamma and beta and the generalized-alpha weights alpha_m,
+/// alpha_f of the step (see above).
+struct TimeIntegrationRule {
+  double gamma = 0.5;
+  double beta = 0.25;
+  double alpha_m = 0.0;
+  double alpha_f = 0.0;
+
+  /// gamma = 1/2, beta = 1/4, alpha_m = alpha_f = 0: no numerical damping.
+  static TimeIntegrationRule average_acceleration() { return {}; }
+  /// Chung & Hulbert's optimal parameters for a spectral radius rho_inf in
+  /// [0, 1] at infinite frequency: alpha_m = (2 rho - 1)/(rho + 1), alpha_f =
+  /// rho/(rho + 1), gamma = 1/2 - alpha_m + alpha_f, beta = (1 - alpha_m +
+  /// alpha_f)^2 / 4. rho_inf = 1 is the average-acceleration rule itself
+  /// (returned as such: the same steps bit for bit). Throws
+  /// std::invalid_argument outside [0, 1].
+  static TimeIntegrationRule generalized_alpha(double spectral_radius);
+};
+
 /// A copy of the integrator's state (u, v, a and the K products carried
 /// with them): what an implicit coupling window rolls back to.
 struct NewmarkState {
-  PetscVector u, v, a, ku, kv, ka;
+  PetscVector u, v, a, ku, kv, ka, f;  ///< f: the load at the state's time (generalized-alpha's F_n)
 };
 
 class NewmarkIntegrator {
  public:
-  static constexpr double gamma = 0.5;
-  static constexpr double beta = 0.25;
-
   /// K and the mass diagonal are kept by reference (PETSc reference counts);
   /// u, v start at zero and a from M a = F0 - K u - C v at the first step.
-  NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping, SolverFactory factory);
+  NewmarkIntegrator(Mat stiffness, Vec mass_diagonal, RayleighCoefficients damping, SolverFactory factory,
+                    TimeIntegrationRule rule = TimeIntegrationRule::average_acceleration());
 
   /// Sets the state at the current time; the acceleration follows from the
   /// equation of motion with the load `load` (M is diagonal: no solve; with
@@ -69,6 +92,7 @@ class NewmarkIntegrator {
   /// 1/2 v.M v + 1/2 u.K u (J): conserved by the undamped, unloaded rule.
   [[nodiscard]] double energy() const;
   [[nodiscard]] const RayleighCoefficients& damping() const { return damping_; }
+  [[nodiscard]] const TimeIntegrationRule& rule() const { return rule_; }
   /// Number of factorisations so far (one per distinct dt).
   [[nodiscard]] int factorisations() const { return factorisations_; }
 
@@ -81,13 +105,15 @@ class NewmarkIntegrator {
   Mat added_mass_ = nullptr;              ///< M_a, or none
   std::unique_ptr<LinearSolve> inertia_;  ///< (M + M_a)^-1, with an added mass
   RayleighCoefficients damping_;
+  TimeIntegrationRule rule_;
   SolverFactory factory_;
   std::unique_ptr<LinearSolve> solver_;
   PetscMatrix effective_;
   double factorised_dt_ = 0.0;
   int factorisations_ = 0;
   PetscVector u_, v_, a_, rhs_, work_, work2_, a_new_, u_new_;  // created once: no allocation per step
-  PetscVector ku_, kv_, ka_, ka_new_;  ///< K u, K v, K a (kept when beta_R != 0)
+  PetscVector ku_, kv_, ka_, ka_new_;  ///< K u, K v, K a (kept when beta_R != 0 or alpha_f != 0)
+  PetscVector load_;                   ///< F at the current time (generalized-alpha's F_n)
   PetscMatrix inertia_matrix_;         ///< M + M_a, with an added mass
 };
 

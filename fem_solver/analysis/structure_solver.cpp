@@ -17,11 +17,12 @@ Eigen::Vector3d translational_total(const NodalValues& values) {
 }  // namespace
 
 StructureSolver::StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
-                                 const GroundMotion& motion)
+                                 const GroundMotion& motion, TimeIntegrationRule rule)
     : system_(system),
       motion_(motion),
-      integrator_(system.stiffness(), system.mass(), damping,
-                  [&system](Mat m) -> std::unique_ptr<LinearSolve> { return system.make_solver(m); }) {
+      integrator_(
+          system.stiffness(), system.mass(), damping,
+          [&system](Mat m) -> std::unique_ptr<LinearSolve> { return system.make_solver(m); }, rule) {
   SystemAssembler& assembler = system_.assembler();
   constant_load_ = assemble_loads(assembler, constant_loads);
   assembler.add_prescribed_lift(constant_load_.get());

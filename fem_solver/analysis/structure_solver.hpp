@@ -29,7 +29,7 @@ class StructureSolver {
  public:
   /// Starts at rest at t = 0 with the constant loads applied.
   StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
-                  const GroundMotion& motion);
+                  const GroundMotion& motion, TimeIntegrationRule rule = TimeIntegrationRule::average_acceleration());
 
   /// The interface the coupling exchanges (the same on every rank); sets up
   /// the scatter of its values to every rank. Collective.

@@ -49,6 +49,7 @@ StructureCase read_structure_case(const CaseConfig& config) {
     if (!config.has("end_time")) throw config.error_at("end_time", "a dynamic analysis needs end_time (the simulated time)");
     c.end_time = config.real("end_time");
     c.time_step = config.real("structure.time_step");
+    c.spectral_radius = config.real("structure.time_integration.spectral_radius");
     const auto modes = config.real_vector("structure.damping.target_modes");
     c.damping.first_mode = mode_number(config, modes[0]);
     c.damping.second_mode = mode_number(config, modes[1]);

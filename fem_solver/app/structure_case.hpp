@@ -41,6 +41,7 @@ struct StructureCase {
   double time_step = 0.0;
   double end_time = 0.0;
   DampingTarget damping;
+  double spectral_radius = 1.0;  ///< generalized-alpha rho_inf; 1: average acceleration
   double field_interval = 0.0;
   double probe_interval = 0.0;
 };

@@ -10,9 +10,11 @@ namespace {
 
 const Origin restart_origin{"--restart", 0};
 
-std::array<std::pair<const char*, Vec>, 6> newmark_vectors(const StructureSolver::Checkpoint& c) {
+/// f, the load at the state's time, only the generalized-alpha rule reads;
+/// checkpoints written before it was kept have none (read_structure_state).
+std::array<std::pair<const char*, Vec>, 7> newmark_vectors(const StructureSolver::Checkpoint& c) {
   return {{{"u", c.state.u.get()}, {"v", c.state.v.get()}, {"a", c.state.a.get()},
-           {"ku", c.state.ku.get()}, {"kv", c.state.kv.get()}, {"ka", c.state.ka.get()}}};
+           {"ku", c.state.ku.get()}, {"kv", c.state.kv.get()}, {"ka", c.state.ka.get()}, {"f", c.state.f.get()}}};
 }
 
 }  // namespace
@@ -48,6 +50,12 @@ nlohmann::json read_structure_state(MPI_Comm comm, const RestartPoint& point, St
   solver.save(state);  // vectors of the right layout, overwritten below
   for (const auto& [name, vector] : newmark_vectors(state)) {
     const std::string dataset = std::string("/structure/newmark/") + name;
+    if (!file.exists(dataset) && std::string(name) == "f") {
+      if (solver.integrator().rule().alpha_f == 0.0) continue;  // an older checkpoint: average acceleration does not read f
+      throw ConfigError(restart_origin, "", point.path.string() +
+                                                " holds no load of its last step (written by an older fem_solver): "
+                                                "the generalized-alpha rule (structure.time_integration) cannot continue it");
+    }
     PetscInt local = 0;
     petsc_check(VecGetLocalSize(vector, &local), "VecGetLocalSize");
     const RowBlock block = rank_order_rows(comm, local);

@@ -132,7 +132,11 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   }
   context.log.info("Rayleigh damping: alpha = ", damping.alpha, " 1/s, beta = ", damping.beta, " s (modes ",
                    c.damping.first_mode, " and ", c.damping.second_mode, ": T = ", first.period, " s, ", second.period, " s)");
-  StructureSolver solver(system, damping, c.loads, motion);
+  const TimeIntegrationRule rule = TimeIntegrationRule::generalized_alpha(c.spectral_radius);
+  if (c.spectral_radius < 1.0)
+    context.log.info("time integration: generalized alpha, rho_inf = ", c.spectral_radius, " (alpha_m = ", rule.alpha_m,
+                     ", alpha_f = ", rule.alpha_f, ", gamma = ", rule.gamma, ", beta = ", rule.beta, ")");
+  StructureSolver solver(system, damping, c.loads, motion, rule);
   const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
   if (wetted) {
     // Wetted elements held fixed on every node (a bottom on its foundation)
@@ -285,6 +289,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   summary["steps"] = solver.steps();
   summary["end_time_s"] = solver.time();
   summary["time_step_s"] = c.time_step;
+  summary["spectral_radius"] = c.spectral_radius;
   summary["initial_state"] = context.config.text("structure.initial_state");
   summary["factorisations"] = solver.integrator().factorisations();
   summary["seconds_per_step"] = seconds / static_cast<double>(std::max<long long>(solver.steps() - steps_before, 1));
