@@ -2,11 +2,11 @@
 # Sets up the machine, builds, and runs the tests. What CI runs (.ci/run) is the
 # default, "all":
 #   release  optimised build, labels unit, integration, validation
-#   asan     AddressSanitizer + UndefinedBehaviorSanitizer build, labels unit, integration
-#            but not 'long' (restart runs whose code paths the shorter restart tests
-#            under the sanitizers run too; each takes minutes instrumented) and not the
-#            4-rank variants of the unit tests (the same code as on 2 and 3 ranks,
-#            oversubscribed 2:1 on CI's 2 cores; release runs them)
+#   asan     AddressSanitizer + UndefinedBehaviorSanitizer build, labels unit and
+#            sanitize (one integration test of each code path:
+#            tests/integration/CMakeLists.txt), the unit tests on 1 and 2 ranks only
+#            (their 3- and 4-rank variants run the same code oversubscribed on CI's
+#            2 cores, minutes each instrumented; release runs them)
 #   fuzz     clang libFuzzer targets of the file readers, 20 s each (label fuzz)
 # Usage: scripts/test.sh [all|release|debug|asan|fuzz] [ctest args...]
 set -euo pipefail
@@ -16,20 +16,14 @@ shift || true
 labels_of() {
   case $1 in
     release|debug) echo 'unit|integration|validation' ;;
-    asan) echo 'unit|integration' ;;
+    asan) echo 'unit|sanitize' ;;
     fuzz) echo 'fuzz' ;;
     *) echo "scripts/test.sh: unknown preset '$1' (all, release, debug, asan, fuzz)" >&2; exit 2 ;;
   esac
 }
-excluded_of() {
-  case $1 in
-    asan) echo 'long' ;;
-    *) echo '' ;;
-  esac
-}
 excluded_names_of() {
   case $1 in
-    asan) echo '_unit_tests\.np4$' ;;
+    asan) echo '_unit_tests\.np[34]$' ;;
     *) echo '' ;;
   esac
 }
@@ -41,9 +35,7 @@ cd "$repo_root"
 for preset in "${presets[@]}"; do
   echo "== $preset: build"
   bash "$repo_root/scripts/build.sh" "$preset"
-  excluded=$(excluded_of "$preset")
   excluded_names=$(excluded_names_of "$preset")
-  echo "== $preset: tests ($(labels_of "$preset")${excluded:+, not $excluded}${excluded_names:+, not $excluded_names})"
-  ctest --preset "$preset" -j "$jobs" -L "$(labels_of "$preset")" ${excluded:+-LE "$excluded"} \
-    ${excluded_names:+-E "$excluded_names"} "$@"
+  echo "== $preset: tests ($(labels_of "$preset")${excluded_names:+, not $excluded_names})"
+  ctest --preset "$preset" -j "$jobs" -L "$(labels_of "$preset")" ${excluded_names:+-E "$excluded_names"} "$@"
 done
