@@ -38,7 +38,7 @@ Eigen::Vector3d interpolate(const TriangleMesh& mesh, const std::vector<Eigen::V
 /// triangle's own, as the contact uses it) where all three corners have it.
 Eigen::Vector3d smooth_normal(const WallCornerValues& corners, int t, const Eigen::Vector3d& w,
                               const Eigen::Vector3d& plane, int dimension) {
-  const auto& n = corners.normals[at(t)];
+  const auto& n = corners.normals(t);
   Eigen::Vector3d normal = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
   if (dimension == 2) normal.z() = 0.0;
   if (!(normal.norm() > 0.5)) return plane;  // corners on opposite walls: cannot happen on a manifold mesh
@@ -54,6 +54,7 @@ WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& k
       table_(kernel, model.spacing),
       corner_table_(kernel, model.spacing),
       support_radius_(kernel.support_radius()),
+      corner_values_(*mesh_),
       velocities_(mesh_->vertex_count(), Eigen::Vector3d::Zero()) {
   update_curvature();
 }
@@ -62,6 +63,7 @@ void WallModel::replace_mesh(TriangleMesh mesh) {
   *mesh_ = std::move(mesh);  // the same object: the index keeps pointing to it
   index_.rebuild();
   velocities_.assign(mesh_->vertex_count(), Eigen::Vector3d::Zero());
+  corner_values_ = WallCornerValues(*mesh_);
   update_curvature();
 }
 
@@ -78,9 +80,7 @@ void WallModel::update_curvature() {
   compute_vertex_mean_curvature(*mesh_, curvature_);
   for (double& h : curvature_)
     if (!(std::abs(h) * support_radius_ <= resolvable_curvature)) h = std::numeric_limits<double>::quiet_NaN();
-  corner_values_ = wall_corner_values(*mesh_, curvature_, same_wall_cosine);
-  for (double& h : curvature_)
-    if (std::isnan(h)) h = 0.0;
+  corner_values_.update(*mesh_, curvature_, same_wall_cosine);
 }
 
 WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension) {
@@ -120,9 +120,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       contact.barycentric = hit.closest.barycentric;
       contact.normal = smooth_normal(walls.corner_values(), hit.triangle, contact.barycentric, normal, dimension);
       contact.distance = height <= 0.0 ? 0.0 : std::sqrt(hit.closest.squared_distance);
-      const auto& corner_h = walls.corner_values().curvature[at(hit.triangle)];
-      const Eigen::Vector3d& w = contact.barycentric;
-      const double h = w[0] * corner_h[0] + w[1] * corner_h[1] + w[2] * corner_h[2];
+      const double h = walls.corner_values().curvature_at(hit.triangle, contact.barycentric);
       contact.values = curved(walls.table().at(contact.distance), h);
       contact.velocity = interpolate(mesh, walls.vertex_velocities(), hit.triangle, contact.barycentric);
       result.contacts.push_back(contact);

@@ -18,9 +18,10 @@
 // wall; the normal that of the smooth wall the facets approximate, interpolated at
 // the closest point from the triangle's corner normals (wall_corner_values.hpp: a
 // flat wall keeps its plane's normal exactly). Which wall a triangle belongs to and
-// which side of it the particle is on go by the triangle's own plane. A particle that has crossed a wall by less
-// than L0/2 is treated as touching it (distance 0), so the strongest wall terms push
-// it back; one further behind is not in contact (it has left through the wall).
+// which side of it the particle is on go by the triangle's own plane. A particle
+// that has crossed a wall by less than L0/2 is treated as touching it (distance 0),
+// so the strongest wall terms push it back; one further behind is not in contact
+// (it has left through the wall).
 //
 // Curvature: the flat-wall tables count virtual particles in layers parallel to the
 // wall. Behind a curved wall a layer at depth s has the area of the surface times
@@ -59,8 +60,6 @@ class WallModel {
   [[nodiscard]] const TriangleIndex& index() const { return index_; }
   [[nodiscard]] const WallKernelTable& table() const { return table_; }
   [[nodiscard]] const CornerKernelTable& corner_table() const { return corner_table_; }
-  /// Mean curvature per vertex, sharp features zeroed (see above).
-  [[nodiscard]] const std::vector<double>& curvature() const { return curvature_; }
   /// Normal and curvature of each triangle's own wall at its corners (see above).
   [[nodiscard]] const WallCornerValues& corner_values() const { return corner_values_; }
   [[nodiscard]] const std::vector<Eigen::Vector3d>& vertex_velocities() const { return velocities_; }
@@ -81,7 +80,7 @@ class WallModel {
   WallKernelTable table_;
   CornerKernelTable corner_table_;
   double support_radius_;
-  std::vector<double> curvature_;
+  std::vector<double> curvature_;  ///< per vertex, NaN where not resolvable (scratch of update_curvature)
   WallCornerValues corner_values_;
   std::vector<Eigen::Vector3d> velocities_;
 };

@@ -82,14 +82,4 @@ std::vector<double> vertex_mean_curvature(const TriangleMesh& mesh) {
   return curvature;
 }
 
-double interpolate_vertex_values(const TriangleMesh& mesh, std::span<const double> values, int t,
-                                 const Eigen::Vector3d& barycentric) {
-  if (values.size() != mesh.vertex_count())
-    throw std::invalid_argument("interpolate_vertex_values: one value per vertex expected");
-  const auto& tri = mesh.triangles()[static_cast<std::size_t>(t)];
-  return barycentric[0] * values[static_cast<std::size_t>(tri[0])] +
-         barycentric[1] * values[static_cast<std::size_t>(tri[1])] +
-         barycentric[2] * values[static_cast<std::size_t>(tri[2])];
-}
-
 }  // namespace tankfsi::sph

@@ -45,9 +45,4 @@ void compute_vertex_mean_curvature(const TriangleMesh& mesh, std::vector<double>
 
 [[nodiscard]] std::vector<double> vertex_mean_curvature(const TriangleMesh& mesh);
 
-/// A vertex field at a point of triangle t given by its barycentric weights (e.g. the
-/// ClosestPoint of a particle): Σ w_k f(x_k). Used for H at a particle's closest point.
-[[nodiscard]] double interpolate_vertex_values(const TriangleMesh& mesh, std::span<const double> values, int t,
-                                               const Eigen::Vector3d& barycentric);
-
 }  // namespace tankfsi::sph

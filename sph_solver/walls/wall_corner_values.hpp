@@ -15,10 +15,13 @@
 // normals are closer than same_wall_cosine (the contacts' rule, wall_contacts.hpp).
 // Corner normal of triangle t at vertex v: the angle-weighted mean of the normals of
 // the triangles around v on t's wall (Thuermer & Wuethrich 1998), exactly t's own
-// normal where they agree to round-off (a flat wall stays exactly flat). Corner curvature:
-// the vertex's mean curvature where the kernel resolves it, else (a vertex on a
-// sharp edge) the mean of the resolvable curvatures of its neighbours on t's wall,
-// else 0.
+// normal where they agree to round-off (a flat wall stays exactly flat). Corner
+// curvature: the vertex's mean curvature where the kernel resolves it, else (a
+// vertex on a sharp edge) the mean of the resolvable curvatures of its neighbours on
+// t's wall, else 0.
+//
+// The triangles around each vertex are found once per mesh; update() follows a
+// moving wall (same topology) every step without allocating.
 #include <Eigen/Core>
 
 #include <array>
@@ -29,15 +32,32 @@
 
 namespace tankfsi::sph {
 
-struct WallCornerValues {
-  std::vector<std::array<Eigen::Vector3d, 3>> normals;  ///< per triangle and corner, unit
-  std::vector<std::array<double, 3>> curvature;          ///< per triangle and corner (1/m)
-};
+class WallCornerValues {
+ public:
+  /// The topology of `mesh` (its triangles around each vertex); no values yet.
+  explicit WallCornerValues(const TriangleMesh& mesh);
 
-/// `vertex_curvature`: per vertex, NaN where the kernel does not resolve it (a
-/// sharp edge or corner). `same_wall_cosine`: the cosine below which two
-/// triangles are different walls.
-[[nodiscard]] WallCornerValues wall_corner_values(const TriangleMesh& mesh, std::span<const double> vertex_curvature,
-                                                  double same_wall_cosine);
+  /// The values for the mesh's current positions (the topology given at
+  /// construction). `vertex_curvature`: per vertex, NaN where the kernel does not
+  /// resolve it (a sharp edge or corner). `same_wall_cosine`: the cosine below
+  /// which two triangles are different walls.
+  void update(const TriangleMesh& mesh, std::span<const double> vertex_curvature, double same_wall_cosine);
+
+  /// Unit normals of triangle t's wall at its corners.
+  [[nodiscard]] const std::array<Eigen::Vector3d, 3>& normals(int t) const { return normals_[at(t)]; }
+  /// Mean curvature of triangle t's wall at barycentric weights w (1/m).
+  [[nodiscard]] double curvature_at(int t, const Eigen::Vector3d& w) const {
+    const auto& h = curvature_[at(t)];
+    return w[0] * h[0] + w[1] * h[1] + w[2] * h[2];
+  }
+
+ private:
+  static std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+  std::vector<int> around_offsets_;               ///< CSR over vertices
+  std::vector<std::array<int, 2>> around_;        ///< (triangle, its corner index at the vertex)
+  std::vector<std::array<Eigen::Vector3d, 3>> normals_;
+  std::vector<std::array<double, 3>> curvature_;
+};
 
 }  // namespace tankfsi::sph

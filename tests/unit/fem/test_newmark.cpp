@@ -159,50 +159,80 @@ TEST_CASE("Rayleigh alpha and beta reproduce the two target ratios", "[fem][newm
   CHECK_THROWS_AS(rayleigh_from_modes(w1, 0.03, w1, 0.03), std::invalid_argument);
 }
 
-TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M alone", "[fem][newmark][added_mass]") {
-  // Two DOFs coupled by K, a full (non-diagonal) added mass M_a and Rayleigh
-  // damping C = alpha M + beta K on the structure's own M: against the same
-  // average-acceleration rule written out densely (Eigen), from a displaced,
-  // moving start under a changing load. Both solve the same equations; only
-  // round-off separates them (1e-12 of the motion).
-  Eigen::Matrix2d stiffness, added;
-  stiffness << 300.0, -100.0, -100.0, 200.0;
-  added << 4.0, 1.5, 1.5, 3.0;  // symmetric positive definite, coupling the DOFs
-  const Eigen::Vector2d mass(1.0, 2.0);
-  const RayleighCoefficients damping{0.4, 0.002};
+/// Two DOFs coupled by K, a full (non-diagonal) added mass M_a and Rayleigh
+/// damping C = alpha M + beta K on the structure's own M, from a displaced,
+/// moving, loaded start: the PETSc system and its dense (Eigen) twin.
+struct TwoDofWithAddedMass {
+  Eigen::Matrix2d stiffness{{300.0, -100.0}, {-100.0, 200.0}};
+  Eigen::Matrix2d added{{4.0, 1.5}, {1.5, 3.0}};  // symmetric positive definite, coupling the DOFs
+  Eigen::Vector2d mass{1.0, 2.0};
+  RayleighCoefficients damping{0.4, 0.002};
+  Eigen::Vector2d u0{0.01, -0.02}, v0{0.3, 0.1}, f0{0.2, -0.1};
   PetscMatrix k, m_a;
   PetscVector m, u, v, f;
-  for (PetscMatrix* a : {&k, &m_a}) petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, nullptr, a->out()), "MatCreateSeqAIJ");
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) {
-      MatSetValue(k.get(), i, j, stiffness(i, j), INSERT_VALUES);
-      MatSetValue(m_a.get(), i, j, added(i, j), INSERT_VALUES);
-    }
-  for (PetscMatrix* a : {&k, &m_a}) {
-    MatAssemblyBegin(a->get(), MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(a->get(), MAT_FINAL_ASSEMBLY);
-  }
-  for (PetscVector* x : {&m, &u, &v, &f}) petsc_check(VecCreateSeq(PETSC_COMM_SELF, 2, x->out()), "VecCreateSeq");
-  const PetscInt index[2] = {0, 1};
-  const double u0[2] = {0.01, -0.02}, v0[2] = {0.3, 0.1};
-  VecSetValues(m.get(), 2, index, mass.data(), INSERT_VALUES);
-  VecSetValues(u.get(), 2, index, u0, INSERT_VALUES);
-  VecSetValues(v.get(), 2, index, v0, INSERT_VALUES);
-  VecSet(f.get(), 0.0);
-  NewmarkIntegrator newmark(k.get(), m.get(), damping, [](Mat a) { return std::make_unique<SerialSolve>(a); });
-  newmark.set_added_mass(m_a.get());
-  newmark.initialise(u.get(), v.get(), f.get());
 
-  const Eigen::Matrix2d inertia = Eigen::Matrix2d(mass.asDiagonal()) + added;
-  const Eigen::Matrix2d c = damping.alpha * Eigen::Matrix2d(mass.asDiagonal()) + damping.beta * stiffness;
-  Eigen::Vector2d ue(u0[0], u0[1]), ve(v0[0], v0[1]);
-  Eigen::Vector2d ae = inertia.ldlt().solve(-stiffness * ue - c * ve);
+  TwoDofWithAddedMass() {
+    for (PetscMatrix* a : {&k, &m_a})
+      petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, nullptr, a->out()), "MatCreateSeqAIJ");
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        MatSetValue(k.get(), i, j, stiffness(i, j), INSERT_VALUES);
+        MatSetValue(m_a.get(), i, j, added(i, j), INSERT_VALUES);
+      }
+    for (PetscMatrix* a : {&k, &m_a}) {
+      MatAssemblyBegin(a->get(), MAT_FINAL_ASSEMBLY);
+      MatAssemblyEnd(a->get(), MAT_FINAL_ASSEMBLY);
+    }
+    for (PetscVector* x : {&m, &u, &v, &f}) petsc_check(VecCreateSeq(PETSC_COMM_SELF, 2, x->out()), "VecCreateSeq");
+    set(m, mass);
+    set(u, u0);
+    set(v, v0);
+    set(f, f0);
+  }
+  static void set(PetscVector& x, const Eigen::Vector2d& values) {
+    const PetscInt index[2] = {0, 1};
+    VecSetValues(x.get(), 2, index, values.data(), INSERT_VALUES);
+  }
+  /// The integrator with M_a, initialised at (u0, v0) under f0.
+  NewmarkIntegrator integrator(TimeIntegrationRule rule) {
+    NewmarkIntegrator newmark(
+        k.get(), m.get(), damping, [](Mat a) { return std::make_unique<SerialSolve>(a); }, rule);
+    newmark.set_added_mass(m_a.get());
+    newmark.initialise(u.get(), v.get(), f.get());
+    return newmark;
+  }
+  /// Advances `newmark` by dt to the load `load`.
+  void step(NewmarkIntegrator& newmark, double dt, const Eigen::Vector2d& load) {
+    set(f, load);
+    newmark.step(dt, f.get());
+  }
+  [[nodiscard]] Eigen::Matrix2d inertia() const { return Eigen::Matrix2d(mass.asDiagonal()) + added; }
+  [[nodiscard]] Eigen::Matrix2d c() const {
+    return damping.alpha * Eigen::Matrix2d(mass.asDiagonal()) + damping.beta * stiffness;
+  }
+  [[nodiscard]] static Eigen::Vector2d displacement(const NewmarkIntegrator& newmark) {
+    const PetscScalar* x = nullptr;
+    VecGetArrayRead(newmark.displacement(), &x);
+    const Eigen::Vector2d out(x[0], x[1]);
+    VecRestoreArrayRead(newmark.displacement(), &x);
+    return out;
+  }
+};
+
+TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M alone", "[fem][newmark][added_mass]") {
+  // Against the same average-acceleration rule written out densely (Eigen),
+  // under a changing load. Both solve the same equations; only round-off
+  // separates them (1e-12 of the motion).
+  TwoDofWithAddedMass system;
+  NewmarkIntegrator newmark = system.integrator(TimeIntegrationRule::average_acceleration());
+  const Eigen::Matrix2d inertia = system.inertia(), c = system.c(), stiffness = system.stiffness;
+  Eigen::Vector2d ue = system.u0, ve = system.v0;
+  Eigen::Vector2d ae = inertia.ldlt().solve(system.f0 - stiffness * ue - c * ve);
   const double dt = 0.005;
   double largest = 0.0, worst = 0.0;
   for (int n = 1; n <= 400; ++n) {
     const Eigen::Vector2d load(std::sin(7.0 * n * dt), 0.5 * std::cos(3.0 * n * dt));
-    VecSetValues(f.get(), 2, index, load.data(), INSERT_VALUES);
-    newmark.step(dt, f.get());
+    system.step(newmark, dt, load);
     // (M + M_a) a' + C v' + K u' = F with u' = u + dt v + dt^2/4 (a + a'), v' = v + dt/2 (a + a')
     const Eigen::Matrix2d effective = inertia + 0.5 * dt * c + 0.25 * dt * dt * stiffness;
     const Eigen::Vector2d a_new = effective.ldlt().solve(load - c * (ve + 0.5 * dt * ae) -
@@ -210,10 +240,7 @@ TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M 
     ue += dt * ve + 0.25 * dt * dt * (ae + a_new);
     ve += 0.5 * dt * (ae + a_new);
     ae = a_new;
-    const PetscScalar* x = nullptr;
-    VecGetArrayRead(newmark.displacement(), &x);
-    worst = std::max({worst, std::abs(x[0] - ue[0]), std::abs(x[1] - ue[1])});
-    VecRestoreArrayRead(newmark.displacement(), &x);
+    worst = std::max(worst, (TwoDofWithAddedMass::displacement(newmark) - ue).cwiseAbs().maxCoeff());
     largest = std::max(largest, ue.cwiseAbs().maxCoeff());
   }
   CHECK(worst < 1e-12 * largest);
@@ -229,46 +256,17 @@ TEST_CASE("Generalized alpha against its equations written out densely", "[fem][
   const TimeIntegrationRule rule = TimeIntegrationRule::generalized_alpha(0.6);
   REQUIRE(rule.alpha_m == Approx(0.2 / 1.6));
   REQUIRE(rule.alpha_f == Approx(0.6 / 1.6));
-  Eigen::Matrix2d stiffness, added;
-  stiffness << 300.0, -100.0, -100.0, 200.0;
-  added << 4.0, 1.5, 1.5, 3.0;
-  const Eigen::Vector2d mass(1.0, 2.0);
-  const RayleighCoefficients damping{0.4, 0.002};
-  PetscMatrix k, m_a;
-  PetscVector m, u, v, f;
-  for (PetscMatrix* a : {&k, &m_a}) petsc_check(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, nullptr, a->out()), "MatCreateSeqAIJ");
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) {
-      MatSetValue(k.get(), i, j, stiffness(i, j), INSERT_VALUES);
-      MatSetValue(m_a.get(), i, j, added(i, j), INSERT_VALUES);
-    }
-  for (PetscMatrix* a : {&k, &m_a}) {
-    MatAssemblyBegin(a->get(), MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(a->get(), MAT_FINAL_ASSEMBLY);
-  }
-  for (PetscVector* x : {&m, &u, &v, &f}) petsc_check(VecCreateSeq(PETSC_COMM_SELF, 2, x->out()), "VecCreateSeq");
-  const PetscInt index[2] = {0, 1};
-  const double u0[2] = {0.01, -0.02}, v0[2] = {0.3, 0.1}, f0[2] = {0.2, -0.1};
-  VecSetValues(m.get(), 2, index, mass.data(), INSERT_VALUES);
-  VecSetValues(u.get(), 2, index, u0, INSERT_VALUES);
-  VecSetValues(v.get(), 2, index, v0, INSERT_VALUES);
-  VecSetValues(f.get(), 2, index, f0, INSERT_VALUES);
-  NewmarkIntegrator newmark(
-      k.get(), m.get(), damping, [](Mat a) { return std::make_unique<SerialSolve>(a); }, rule);
-  newmark.set_added_mass(m_a.get());
-  newmark.initialise(u.get(), v.get(), f.get());
-
-  const Eigen::Matrix2d inertia = Eigen::Matrix2d(mass.asDiagonal()) + added;
-  const Eigen::Matrix2d c = damping.alpha * Eigen::Matrix2d(mass.asDiagonal()) + damping.beta * stiffness;
+  TwoDofWithAddedMass system;
+  NewmarkIntegrator newmark = system.integrator(rule);
+  const Eigen::Matrix2d inertia = system.inertia(), c = system.c(), stiffness = system.stiffness;
   const double am = rule.alpha_m, af = rule.alpha_f, g = rule.gamma, b = rule.beta;
-  Eigen::Vector2d ue(u0[0], u0[1]), ve(v0[0], v0[1]), fe(f0[0], f0[1]);
+  Eigen::Vector2d ue = system.u0, ve = system.v0, fe = system.f0;
   Eigen::Vector2d ae = inertia.ldlt().solve(fe - stiffness * ue - c * ve);
   const double dt = 0.005;
   double largest = 0.0, worst = 0.0;
   for (int n = 1; n <= 400; ++n) {
     const Eigen::Vector2d load(std::sin(7.0 * n * dt), 0.5 * std::cos(3.0 * n * dt));
-    VecSetValues(f.get(), 2, index, load.data(), INSERT_VALUES);
-    newmark.step(dt, f.get());
+    system.step(newmark, dt, load);
     const Eigen::Vector2d u_known = ue + dt * ve + dt * dt * (0.5 - b) * ae;  // u' = u_known + dt^2 beta a'
     const Eigen::Vector2d v_known = ve + dt * (1.0 - g) * ae;                 // v' = v_known + dt gamma a'
     const Eigen::Matrix2d effective = (1.0 - am) * inertia + (1.0 - af) * (g * dt * c + b * dt * dt * stiffness);
@@ -279,10 +277,7 @@ TEST_CASE("Generalized alpha against its equations written out densely", "[fem][
     ve = v_known + dt * g * a_new;
     ae = a_new;
     fe = load;
-    const PetscScalar* x = nullptr;
-    VecGetArrayRead(newmark.displacement(), &x);
-    worst = std::max({worst, std::abs(x[0] - ue[0]), std::abs(x[1] - ue[1])});
-    VecRestoreArrayRead(newmark.displacement(), &x);
+    worst = std::max(worst, (TwoDofWithAddedMass::displacement(newmark) - ue).cwiseAbs().maxCoeff());
     largest = std::max(largest, ue.cwiseAbs().maxCoeff());
   }
   CHECK(worst < 1e-11 * largest);

@@ -40,7 +40,8 @@ TEST_CASE("corner values of a faceted tank: radial normals, each wall its own at
     if (std::abs(tank.vertices()[v].z() - 0.5) < 1e-9) wall_h = h[v];
   REQUIRE(std::abs(std::abs(wall_h) * 2.0 * radius - 1.0) < 0.02);
 
-  const WallCornerValues corners = wall_corner_values(tank, h, same_wall_cosine);
+  WallCornerValues corners(tank);
+  corners.update(tank, h, same_wall_cosine);
   const auto& triangles = tank.triangles();
   double worst_wall_angle = 0.0, worst_face_angle = 0.0;
   int foot_corners = 0;
@@ -49,8 +50,8 @@ TEST_CASE("corner values of a faceted tank: radial normals, each wall its own at
     const bool bottom = face.z() > 0.99;
     for (int k = 0; k < 3; ++k) {
       const Vector3d& p = tank.corner(t, k);
-      const Vector3d& n = corners.normals[at(t)][at(k)];
-      const double c = corners.curvature[at(t)][at(k)];
+      const Vector3d& n = corners.normals(t)[at(k)];
+      const double c = corners.curvature_at(t, Vector3d::Unit(k));
       CHECK(std::isfinite(c));
       if (bottom) {
         CHECK(n == face);  // the flat bottom stays exactly flat, also at the foot
@@ -76,7 +77,8 @@ TEST_CASE("corner values of a faceted tank: radial normals, each wall its own at
 TEST_CASE("corner values of a flat wall are its plane's, bit for bit", "[wall_geometry]") {
   const TriangleMesh plane = make_rectangle(Vector3d(0.1, -0.3, 0.2), Vector3d(0.7, 0.2, 0.1), Vector3d(-0.1, 0.4, 0.3), 6);
   const std::vector<double> h = vertex_mean_curvature(plane);
-  const WallCornerValues corners = wall_corner_values(plane, h, same_wall_cosine);
+  WallCornerValues corners(plane);
+  corners.update(plane, h, same_wall_cosine);
   for (int t = 0; t < static_cast<int>(plane.triangles().size()); ++t)
-    for (int k = 0; k < 3; ++k) CHECK(corners.normals[at(t)][at(k)] == plane.face_normals()[at(t)]);
+    for (int k = 0; k < 3; ++k) CHECK(corners.normals(t)[at(k)] == plane.face_normals()[at(t)]);
 }

@@ -1,6 +1,5 @@
 // Discrete mean curvature (Meyer et al. 2003) against the analytic values: a sphere
-// (H = 1/R), a cylinder (H = 1/(2R), sign by the normals' side), a plane (H = 0), and
-// the barycentric interpolation to a closest point.
+// (H = 1/R), a cylinder (H = 1/(2R), sign by the normals' side), a plane (H = 0).
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
@@ -132,20 +131,4 @@ TEST_CASE("mean curvature of a flat, irregular wall is zero to round-off", "[wal
   for (const double value : h) worst = std::max(worst, std::abs(value));
   INFO("max |H| h = " << worst * spacing);
   CHECK(worst * spacing < 1e-13);
-}
-
-TEST_CASE("curvature at a closest point interpolates the vertex values barycentrically", "[wall_geometry]") {
-  const TriangleMesh cylinder = make_open_cylinder(1.0, 2.0, 24, 12, NormalSide::inward);
-  std::vector<double> h;
-  compute_vertex_mean_curvature(cylinder, h);
-  const Vector3d p(0.2, 0.1, 1.0);
-  const ClosestPoint cp = closest_point_on_triangle(p, cylinder, 100);
-  const auto& tri = cylinder.triangles()[100];
-  const double expected = cp.barycentric[0] * h[static_cast<std::size_t>(tri[0])] +
-                          cp.barycentric[1] * h[static_cast<std::size_t>(tri[1])] +
-                          cp.barycentric[2] * h[static_cast<std::size_t>(tri[2])];
-  CHECK(interpolate_vertex_values(cylinder, h, 100, cp.barycentric) == expected);
-  CHECK(interpolate_vertex_values(cylinder, h, 100, Vector3d::Unit(1)) == h[static_cast<std::size_t>(tri[1])]);
-  // Inside a cylindrical tank the fluid sees a hollow wall: H < 0.
-  CHECK(interpolate_vertex_values(cylinder, h, 100, cp.barycentric) == Approx(-0.5).epsilon(0.02));
 }
