@@ -415,7 +415,7 @@ void Participant::Impl::start_data() {
     force_average_ = WindowAverage(mesh_count);
   }
   if (controller_) acceleration_ = make_acceleration(settings_, link_.local());
-  next_restart_time_ = next_checkpoint_time(window_start_, restart_interval_);
+  next_restart_time_ = next_output_time(window_start_, restart_interval_);
 }
 
 // ---- restarts ---------------------------------------------------------------
@@ -794,7 +794,7 @@ void Participant::Impl::accept(const std::vector<double>& next_input_part, int i
   // A restart continues from here: the next input is what the partner sends again.
   if (restart_agreed_) {
     capture_restart_state();
-    next_restart_time_ = next_checkpoint_time(window_start_, restart_interval_);
+    next_restart_time_ = next_output_time(window_start_, restart_interval_);
     restart_point_due_ = true;
     restart_agreed_ = false;
   }

@@ -17,6 +17,10 @@ run_dir="runs/$(basename "$case_dir")-$(date +%Y%m%d-%H%M%S)"
 if ! grep -q '^structure:' "$case_file"; then
   mpirun -np "${TANKFSI_RANKS:-$jobs}" build/bin/sph_solver "$case_file" --output "$run_dir"
   /usr/bin/python3 scripts/post/plot_probes.py "$run_dir"
+  # The paper's §3 outputs of an overflow case: wave height, overflow, periods, pressure maps.
+  if grep -q 'type: overflow_tank' "$case_file"; then
+    /usr/bin/python3 scripts/post/overflow_figures.py "$run_dir"
+  fi
   echo "run.sh: results in $run_dir (open fluid.xdmf and walls.xdmf in ParaView)"
   exit 0
 fi

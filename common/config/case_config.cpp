@@ -207,6 +207,10 @@ class ScopeValidator {
       const Given& g = given_[i];
       const KeySpec& spec = *g.spec;
       if (!applies(spec)) {
+        // A required deciding key that is missing is the error, not this key.
+        if (const KeySpec* decider = schema_.find(spec.when_key);
+            decider && decider->required && !given(spec.when_key) && section_present(*decider))
+          throw ConfigError(enclosing_origin(decider->name), full(decider->name), "required key is missing");
         throw ConfigError(g.origin, full(spec.name),
                           "only used when " + full(spec.when_key) + " is " + join(spec.when_values, " or ") +
                               " (here it is " + condition_value(spec.when_key) + ")");

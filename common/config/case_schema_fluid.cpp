@@ -98,16 +98,21 @@ std::vector<KeySpec> fluid_keys() {
                       "Box [x0, y0, z0, x1, y1, z1] outside which particles are removed (overflow); "
                       "omitted for the walls' bounding box grown by one kernel support.")
           .unit_is("m").with_length(6),
-      record_list_key("fluid.probes", "Points sampled every output.probe_interval into probes/<name>.csv.")
+      record_list_key("fluid.probes", "Points and boxes sampled every output.probe_interval into probes/<name>.csv.")
           .default_is("[]")
           .with_fields({
               text_key("name", "Probe name; its file is probes/<name>.csv.").is_required(),
-              choice_key("quantity", {"pressure", "wave_height", "velocity", "front"},
+              choice_key("quantity", {"pressure", "wave_height", "velocity", "front", "volume"},
                          "pressure (Pa) at the point, wave height (m) of the free surface above the point, "
-                         "velocity (m/s) at the point, or the surge front: the largest x - x_point of the "
-                         "particles within 2 L0 above the point.")
+                         "velocity (m/s) at the point, the surge front: the largest x - x_point of the "
+                         "particles within 2 L0 above the point, or the liquid volume inside a box and "
+                         "outside it (the overflowed liquid; removed particles not counted; per metre of "
+                         "depth in 2D).")
                   .is_required(),
-              real_vector_key("position", "The sampled point.").unit_is("m").with_length(3).is_required(),
+              real_vector_key("position", "The sampled point.").unit_is("m").with_length(3).is_required()
+                  .only_when("quantity", {"pressure", "wave_height", "velocity", "front"}),
+              real_vector_key("region", "Box [x0, y0, z0, x1, y1, z1] of a volume probe.")
+                  .unit_is("m").with_length(6).is_required().only_when("quantity", {"volume"}),
           }),
   };
 }

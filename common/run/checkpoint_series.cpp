@@ -101,7 +101,7 @@ CheckpointDecision checkpoint_after_step(MPI_Comm comm, double t, double interva
   CheckpointDecision decision;
   decision.stop_signal = agreed_stop_signal(comm);
   decision.due = t >= next_time * (1.0 - 1e-12);
-  if (decision.due) next_time = next_checkpoint_time(t, interval);
+  if (decision.due) next_time = next_output_time(t, interval);
   decision.due = decision.due || decision.stop_signal != 0;
   return decision;
 }
@@ -114,7 +114,7 @@ std::string last_good_checkpoint(const std::function<std::filesystem::path()>& w
   }
 }
 
-double next_checkpoint_time(double t, double interval) {
+double next_output_time(double t, double interval) {
   if (!(interval > 0.0)) return std::numeric_limits<double>::infinity();
   return interval * (std::floor(t / interval * (1.0 + 1e-12)) + 1.0);
 }

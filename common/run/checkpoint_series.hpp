@@ -48,9 +48,10 @@ class CheckpointSeries {
   int next_;
 };
 
-/// The time of the next periodic checkpoint after `t`: the next multiple of
-/// `interval` (output.checkpoint_interval), infinity for interval 0 (none).
-[[nodiscard]] double next_checkpoint_time(double t, double interval);
+/// The time of the next periodic checkpoint or output after `t`: the next
+/// multiple of `interval` (output.checkpoint_interval, field_interval, ...),
+/// infinity for interval 0 (none).
+[[nodiscard]] double next_output_time(double t, double interval);
 
 /// Whether a program writes a checkpoint after its step, and whether it stops
 /// there (the signal's number; 0: goes on).

@@ -189,7 +189,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   const double checkpoint_interval = context.config.real("output.checkpoint_interval");
   double next_probe = c.probe_interval;
   double next_field = c.field_interval;
-  double next_checkpoint = next_checkpoint_time(0.0, checkpoint_interval);
+  double next_checkpoint = next_output_time(0.0, checkpoint_interval);
   Eigen::Vector2d peak_shear = Eigen::Vector2d::Zero();
   double peak_displacement = 0.0;
   if (resumed) {

@@ -172,9 +172,18 @@ void check_fixed_step_at_rest(const CaseConfig& config, const FluidCase& c) {
 std::vector<ProbeSpec> read_probes(const CaseConfig& config) {
   std::vector<ProbeSpec> probes;
   for (const ConfigView& record : config.records("fluid.probes")) {
-    ProbeSpec p{record.text("name"), record.text("quantity"), record.vector3("position")};
-    if (config.integer("fluid.dimension") == 2 && p.position.z() != 0.0)
-      throw record.error_at("position", "a 2D probe lies in the plane z = 0");
+    ProbeSpec p;
+    p.name = record.text("name");
+    p.quantity = record.text("quantity");
+    const bool two_d = config.integer("fluid.dimension") == 2;
+    if (p.quantity == "volume") {
+      p.region = box_from(record, "region");
+      if (two_d && !(p.region.min().z() <= 0.0 && p.region.max().z() >= 0.0))
+        throw record.error_at("region", "a 2D probe's box must hold the plane z = 0");
+    } else {
+      p.position = record.vector3("position");
+      if (two_d && p.position.z() != 0.0) throw record.error_at("position", "a 2D probe lies in the plane z = 0");
+    }
     for (const auto& other : probes)
       if (other.name == p.name) throw record.error_at("name", "probe name '" + p.name + "' is used twice");
     if (p.name == "fluid") throw record.error_at("name", "'fluid' is the name of the run's global probe file");

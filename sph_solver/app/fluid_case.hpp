@@ -15,8 +15,9 @@ namespace tankfsi::sph {
 
 struct ProbeSpec {
   std::string name;
-  std::string quantity;  ///< pressure, velocity, wave_height, front
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::string quantity;  ///< pressure, velocity, wave_height, front, volume
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< the point of a point probe
+  Eigen::AlignedBox3d region;                          ///< the box of a volume probe
 };
 
 struct FluidCase {

@@ -20,6 +20,7 @@
 #include "sph_solver/app/fluid_checkpoint.hpp"
 #include "common/log/progress_line.hpp"
 #include "common/io/probe_file.hpp"
+#include "common/run/ground_motion_probe.hpp"
 #include "sph_solver/isph/fluid_probes.hpp"
 #include "sph_solver/isph/fluid_solver.hpp"
 #include "sph_solver/isph/time_step_control.hpp"
@@ -27,11 +28,13 @@
 namespace tankfsi::sph {
 namespace {
 
-/// Probe CSV columns; forces of a 2D section are per metre of depth.
-std::vector<std::string> probe_columns(const std::string& quantity) {
+/// Probe CSV columns; volumes and forces of a 2D section are per metre of depth
+/// (`depth_suffix`).
+std::vector<std::string> probe_columns(const std::string& quantity, const std::string& depth_suffix) {
   if (quantity == "pressure") return {"pressure_Pa"};
   if (quantity == "velocity") return {"velocity_x_m_s", "velocity_y_m_s", "velocity_z_m_s"};
   if (quantity == "wave_height") return {"wave_height_m"};
+  if (quantity == "volume") return {"volume_m3" + depth_suffix, "outside_m3" + depth_suffix};
   return {"front_x_m"};
 }
 
@@ -42,6 +45,10 @@ std::vector<double> probe_values(const FluidSolver& solver, const ProbeSpec& pro
     return {v.x(), v.y(), v.z()};
   }
   if (probe.quantity == "wave_height") return {surface_elevation(solver, probe.position, top)};
+  if (probe.quantity == "volume") {
+    const auto volume = liquid_volume(solver, probe.region);
+    return {volume[0], volume[1]};
+  }
   return {front_position(solver, probe.position, Eigen::Vector3d::UnitX())};
 }
 
@@ -62,7 +69,7 @@ class Outputs {
         return open_probe_file(context.folder->probes() / (name + ".csv"), std::move(columns), c.field_interval,
                                resume_time);
       };
-      for (const auto& probe : c.probes) probe_files_.push_back(open(probe.name, probe_columns(probe.quantity)));
+      for (const auto& probe : c.probes) probe_files_.push_back(open(probe.name, probe_columns(probe.quantity, depth_suffix_)));
       global_ = open("fluid", {"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
                                "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_, "force_z_N" + depth_suffix_,
                                "kinetic_energy_J" + depth_suffix_, "time_step_s", "ppe_iterations",
@@ -281,17 +288,23 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     coupling = std::make_unique<FluidCoupling>(context, solver, motion.acceleration(0.0),
                                                coupling_state ? &*coupling_state : nullptr);
   Outputs outputs(context, c, solver, resumed ? std::optional<double>(resumed->t) : std::nullopt);
+  // The input beside the results (a restarted run's folder has it already).
+  const nlohmann::json excitation = resumed ? nlohmann::json::object() : write_ground_motion_probe(context, motion);
   const double checkpoint_interval = context.config.real("output.checkpoint_interval");
   LoopState loop;
   StepReport last;
   if (resumed) {
     loop = *resumed;
+    // The output intervals may change on a restart: the next outputs follow this run's.
+    loop.next_probe = next_output_time(loop.t, c.probe_interval);
+    loop.next_field = next_output_time(loop.t, c.field_interval);
+    loop.next_checkpoint = next_output_time(loop.t, checkpoint_interval);
   } else {
     outputs.sample(loop.t, last);
     outputs.snapshot(loop.t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
     loop.next_probe = c.probe_interval;
     loop.next_field = c.field_interval;
-    loop.next_checkpoint = next_checkpoint_time(0.0, checkpoint_interval);
+    loop.next_checkpoint = next_output_time(0.0, checkpoint_interval);
     loop.speed = solver.max_speed();  // then each step's report carries them
     loop.pressure = solver.max_pressure();
   }
@@ -432,6 +445,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
             {"particle_steps_per_second", (stats.particle_steps - particle_steps_before) / wall_seconds},
             {"wall_seconds_per_simulated_second",
              t > (resumed ? resumed->t : 0.0) ? wall_seconds / (t - (resumed ? resumed->t : 0.0)) : 0.0}}}};
+  results.update(excitation);
   if (resumed) results["fluid"]["restarted_at_s"] = resumed->t;
   if (coupling) results["fluid"]["coupling"] = coupling->summary();
   return results;

@@ -102,6 +102,15 @@ double front_position(const FluidSolver& solver, const Eigen::Vector3d& point, c
   return std::isfinite(front) ? front : not_a_number;
 }
 
+std::array<double, 2> liquid_volume(const FluidSolver& solver, const Eigen::AlignedBox3d& box) {
+  const Particles& p = solver.particles();
+  std::array<double, 2> volume{};
+  for (int j = 0; j < p.count(); ++j)
+    volume[box.contains(p.position[at(j)]) ? 0 : 1] += p.mass[at(j)] / solver.model().density;
+  MPI_Allreduce(MPI_IN_PLACE, volume.data(), 2, MPI_DOUBLE, MPI_SUM, solver.comm());
+  return volume;
+}
+
 double kinetic_energy(const FluidSolver& solver) {
   const Particles& p = solver.particles();
   double energy = 0.0;

@@ -14,8 +14,13 @@
 //   level for the wave height eta); NaN if the line is dry.
 // - front_position: the surge front of a dam break: the largest distance along
 //   `direction` from the point of any particle within 2 L0 above the point's level.
+// - liquid_volume: the volume m_j / rho0 of the particles inside a box and of those
+//   outside it (the liquid that overflowed the box; removed particles are in neither).
 // - kinetic_energy: sum of m v^2 / 2.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <array>
 
 #include "sph_solver/isph/fluid_solver.hpp"
 
@@ -26,6 +31,8 @@ namespace tankfsi::sph {
 [[nodiscard]] double surface_elevation(const FluidSolver& solver, const Eigen::Vector3d& point, double top);
 [[nodiscard]] double front_position(const FluidSolver& solver, const Eigen::Vector3d& point,
                                     const Eigen::Vector3d& direction);
+/// {inside, outside} the box.
+[[nodiscard]] std::array<double, 2> liquid_volume(const FluidSolver& solver, const Eigen::AlignedBox3d& box);
 [[nodiscard]] double kinetic_energy(const FluidSolver& solver);
 
 }  // namespace tankfsi::sph

@@ -114,13 +114,16 @@ std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<c
   const auto colour_gradient = concentration_gradient(n, mass, lattice_density);
   for (int i = 0; i < n.owned; ++i) {
     const double deficit = 1.0 - density[at(i)] / rest_density;
-    const double length = colour_gradient[at(i)].norm();
-    if (!(deficit > 0.0) || !(length > 0.0)) continue;
+    if (!(deficit > 0.0)) continue;
     SurfaceContact c;
     const auto walls_of_i = n.walls.of(i);
-    const auto met = walls_met(walls, walls_of_i, colour_gradient[at(i)], deficit);
+    // A drop alone in the air (no liquid or wall within its support: grad C = 0) has
+    // air all round, in no direction: its vector terms vanish, its PPE row keeps the
+    // air's diagonal (without it the row would be empty and the pressure undefined).
+    const bool alone = !(colour_gradient[at(i)].norm() > 0.0);
+    const auto met = alone ? SurfacePlane{} : walls_met(walls, walls_of_i, colour_gradient[at(i)], deficit);
     c.normal = met.normal;
-    const double delta = met.distance;
+    const double delta = alone ? table.distance_for_share(deficit) : met.distance;
     if (!(delta < farthest)) continue;
     c.active = true;
     c.distance = std::max(delta, closest);

@@ -40,7 +40,9 @@
 // Dirichlet and unknown from one step to the next. A particle that misses more than
 // a half-space (a drop, a jet, a corner of the liquid) gets delta = 0, floored at
 // L0/4 as the walls' extrapolation distance is. The normal is the direction of the
-// colour gradient grad C_i (walls included), which points into the liquid.
+// colour gradient grad C_i (walls included), which points into the liquid; a drop
+// with nothing else in its support (grad C = 0) has air on every side and a zero
+// normal, so only the scalar air terms (density, PPE diagonal) act on it.
 //
 // Contact lines. Where the surface meets a wall at a right angle, the wall's half-
 // space counted the air behind the wall above the surface as liquid (the quarter-

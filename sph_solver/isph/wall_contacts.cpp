@@ -87,6 +87,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   const TriangleMesh& mesh = walls.mesh();
   const double cutoff = walls.table().cutoff();
   const double crossing_tolerance = 0.5 * walls.table().spacing();
+  const double beside_tolerance = 1e-9 * walls.table().spacing();  // round-off of a foot point
   WallContacts result;
   result.offsets.reserve(positions.size() + 1);
   result.overlap_offsets.reserve(positions.size() + 1);
@@ -109,7 +110,12 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       }
       if (normal.squaredNorm() == 0.0) continue;  // degenerate triangle
       const double height = (x - hit.closest.point).dot(normal);
-      if (height < -crossing_tolerance) continue;  // behind this wall's plane
+      if (height < 0.0) {
+        // Behind the plane: touching if it crossed the triangle itself by a little;
+        // beside the triangle it is past a convex edge (flowing round a plate's top).
+        const double beside = (x - hit.closest.point - height * normal).norm();
+        if (height < -crossing_tolerance || beside > beside_tolerance) continue;
+      }
       const bool same_wall = std::any_of(result.contacts.begin() + static_cast<std::ptrdiff_t>(first_contact),
                                          result.contacts.end(), [&normal](const WallContact& c) {
                                            return c.normal.dot(normal) > same_wall_cosine;

@@ -29,6 +29,19 @@ inline FluidModel water() {
   return m;
 }
 
+/// `model`'s water filled into `walls` up to `fill_level` on the lattice, with the
+/// hydrostatic pressure.
+inline Particles fill_water(const FluidModel& model, const TriangleMesh& walls, double fill_level) {
+  FillSpec spec;
+  spec.spacing = model.spacing;
+  spec.density = model.density;
+  spec.fill_level = fill_level;
+  spec.dimension = model.dimension;
+  spec.hydrostatic_pressure = true;
+  spec.gravity = model.gravity;
+  return fill_tank(walls, spec);
+}
+
 /// A tank filled to `level` at rest with hydrostatic pressure, and its neighbourhood.
 struct Tank {
   FluidModel model = water();

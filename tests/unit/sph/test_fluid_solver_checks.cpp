@@ -27,13 +27,7 @@ struct SolverTank {
   std::int64_t floor_particle = -1;  ///< the one nearest the floor's middle
 
   SolverTank() {
-    FillSpec spec;
-    spec.spacing = model.spacing;
-    spec.density = model.density;
-    spec.fill_level = 0.2;
-    spec.dimension = 2;
-    spec.hydrostatic_pressure = true;
-    particles = fill_tank(walls, spec);
+    particles = tankfsi::test::fill_water(model, walls, 0.2);
     double best = std::numeric_limits<double>::infinity();
     for (int i = 0; i < particles.count(); ++i) {
       const auto& x = particles.position[static_cast<std::size_t>(i)];

@@ -1,0 +1,44 @@
+// Which triangles are walls for a particle (wall_contacts.hpp), round the top of
+// a plate: the inner plate of the overflow tank (interior x < 2, top face y = 0.74,
+// 2 L0 thick). A particle beside the inner face just below the top is behind the top
+// face's plane but not behind the top face itself: the inner face is its only wall.
+// One that crossed a face by less than L0/2 touches it; one over the top sees the top.
+#include <catch2/catch.hpp>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "sph_solver/isph/wall_contacts.hpp"
+#include "sph_solver/walls/tank_meshes.hpp"
+#include "tests/unit/sph/still_tank.hpp"
+
+using namespace tankfsi::sph;
+using Eigen::Vector3d;
+
+TEST_CASE("wall contacts round a plate's top (a convex edge)", "[wall_geometry]") {
+  const FluidModel model = tankfsi::test::water();  // L0 = 0.02 m
+  const Kernel kernel(model.kernel, 2, model.smoothing_length);
+  const WallModel walls(make_overflow_tank_2d(OverflowTank2d{.plate_thickness = 0.04, .target_edge = 0.02}), model,
+                        kernel);
+  const std::vector<Vector3d> x{
+      {1.998, 0.735, 0.0},  // beside the inner face, 5 mm below the top's plane
+      {2.003, 0.500, 0.0},  // 3 mm into the inner face (< L0/2)
+      {2.020, 0.750, 0.0},  // 1 cm over the middle of the top
+  };
+  const WallContacts contacts = find_wall_contacts(walls, x, 2);
+
+  const auto beside = contacts.of(0);
+  REQUIRE(beside.size() == 1);
+  CHECK(beside[0].normal.isApprox(Vector3d(-1, 0, 0), 1e-12));
+  CHECK(beside[0].distance == Approx(0.002).epsilon(1e-9));
+
+  const auto crossed = contacts.of(1);
+  REQUIRE(crossed.size() == 1);
+  CHECK(crossed[0].normal.isApprox(Vector3d(-1, 0, 0), 1e-12));
+  CHECK(crossed[0].distance == 0.0);
+
+  const auto over = contacts.of(2);
+  REQUIRE(over.size() == 1);
+  CHECK(over[0].normal.isApprox(Vector3d(0, 1, 0), 1e-12));
+  CHECK(over[0].distance == Approx(0.01).epsilon(1e-9));
+}
