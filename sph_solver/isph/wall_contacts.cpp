@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "sph_solver/walls/closest_point.hpp"
 #include "sph_solver/walls/mean_curvature.hpp"
@@ -92,6 +93,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   result.offsets.reserve(positions.size() + 1);
   result.overlap_offsets.reserve(positions.size() + 1);
   std::vector<WallHit> hits;
+  std::vector<std::pair<Eigen::Vector3d, double>> planes;
   for (const Eigen::Vector3d& x : positions) {
     hits.clear();
     walls.index().within(x, cutoff, [&hits](const WallHit& hit) { hits.push_back(hit); });
@@ -99,22 +101,34 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       return a.closest.squared_distance < b.closest.squared_distance ||
              (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);
     });
-    const auto first_contact = result.contacts.size();
+    // Each hit's plane normal (zero: not a wall of the plane) and the particle's height over it.
+    planes.clear();
     for (const WallHit& hit : hits) {
       Eigen::Vector3d normal = mesh.face_normals()[at(hit.triangle)];
       if (dimension == 2) {
         // The front and back of a 2D section's thin walls are not walls of the plane.
-        if (std::abs(normal.z()) > 0.5) continue;
+        if (std::abs(normal.z()) > 0.5) normal.setZero();
         normal.z() = 0.0;
-        normal.normalize();
+        if (normal.squaredNorm() > 0.0) normal.normalize();
       }
-      if (normal.squaredNorm() == 0.0) continue;  // degenerate triangle
-      const double height = (x - hit.closest.point).dot(normal);
+      planes.push_back({normal, (x - hit.closest.point).dot(normal)});
+    }
+    const auto first_contact = result.contacts.size();
+    for (std::size_t k = 0; k < hits.size(); ++k) {
+      const WallHit& hit = hits[k];
+      const Eigen::Vector3d normal = planes[k].first;
+      const double height = planes[k].second;
+      if (normal.squaredNorm() == 0.0) continue;  // not a wall of the plane, or degenerate
       if (height < 0.0) {
-        // Behind the plane: touching if it crossed the triangle itself by a little;
-        // beside the triangle it is past a convex edge (flowing round a plate's top).
+        // Behind the plane: touching if it crossed the triangle itself by a little.
+        // Beside the triangle and in front of another wall it is round a convex edge
+        // of the solid (flowing over a plate's top, below the top face's plane).
         const double beside = (x - hit.closest.point - height * normal).norm();
-        if (height < -crossing_tolerance || beside > beside_tolerance) continue;
+        const bool round_convex_edge =
+            beside > beside_tolerance && std::any_of(planes.begin(), planes.end(), [&normal](const auto& other) {
+              return other.second > 0.0 && other.first.dot(normal) <= same_wall_cosine;
+            });
+        if (height < -crossing_tolerance || round_convex_edge) continue;
       }
       const bool same_wall = std::any_of(result.contacts.begin() + static_cast<std::ptrdiff_t>(first_contact),
                                          result.contacts.end(), [&normal](const WallContact& c) {

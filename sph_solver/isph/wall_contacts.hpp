@@ -21,11 +21,12 @@
 // which side of it the particle is on go by the triangle's own plane. A particle
 // that has crossed a wall by less than L0/2 is treated as touching it (distance 0),
 // so the strongest wall terms push it back; one further behind is not in contact
-// (it has left through the wall). Only a particle straight behind a triangle has
-// crossed it: one behind the plane but beside the triangle is round a convex edge
-// (liquid flowing over the top of a plate, below the top face's plane), and that
+// (it has left through the wall). But one behind a triangle's plane, beside the
+// triangle and in front of another wall is round a convex edge of the solid
+// (liquid flowing over the top of a plate, below the top face's plane): that
 // triangle is no wall for it — taken at distance 0 it stood for a half-space of
-// wall through the liquid itself.
+// wall through the liquid itself. (Behind every wall near it, beside a facet —
+// just outside a faceted cylinder, say — it has crossed, and touches.)
 //
 // Curvature: the flat-wall tables count virtual particles in layers parallel to the
 // wall. Behind a curved wall a layer at depth s has the area of the surface times

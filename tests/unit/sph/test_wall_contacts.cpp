@@ -3,6 +3,8 @@
 // 2 L0 thick). A particle beside the inner face just below the top is behind the top
 // face's plane but not behind the top face itself: the inner face is its only wall.
 // One that crossed a face by less than L0/2 touches it; one over the top sees the top.
+// Just outside a faceted cylinder, beside its facets and behind every wall near it,
+// a particle has crossed the wall and still touches it.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Core>
@@ -41,4 +43,18 @@ TEST_CASE("wall contacts round a plate's top (a convex edge)", "[wall_geometry]"
   REQUIRE(over.size() == 1);
   CHECK(over[0].normal.isApprox(Vector3d(0, 1, 0), 1e-12));
   CHECK(over[0].distance == Approx(0.01).epsilon(1e-9));
+}
+
+TEST_CASE("wall contacts just outside a faceted cylinder's edge: crossed, touching", "[wall_geometry]") {
+  // R = 1 m in 32 facets: the vertical edge at angle 0 is at (1, 0, z). A particle 3 mm
+  // outside it projects beyond both facets' edges (beside them) and is behind both.
+  const FluidModel model = tankfsi::test::water();
+  const Kernel kernel(model.kernel, 3, model.smoothing_length);
+  const WallModel walls(make_cylindrical_tank(1.0, 1.0, 32, 8, 4), model, kernel);
+  const std::vector<Vector3d> x{{1.003, 0.0, 0.5}};
+  const WallContacts contacts = find_wall_contacts(walls, x, 3);
+  const auto touching = contacts.of(0);
+  REQUIRE(touching.size() == 1);  // the two facets are one wall (same_wall_cosine)
+  CHECK(touching[0].distance == 0.0);
+  CHECK(touching[0].normal.x() < -0.99);  // into the tank
 }
