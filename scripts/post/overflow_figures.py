@@ -93,7 +93,7 @@ def plot_pressure(run, target_s, plots, density):
     outline = wall_outline(run, snapshot.time_s)
     for segment in outline:
         axis.plot(segment[:, 0], segment[:, 1], color="0.3", linewidth=1.0)
-    top = 1000.0 * density * 9.81 * 0.8 / 1000.0  # colour range: hydrostatic at 0.8 m depth
+    top = density * 9.81 * 0.8  # colour range: hydrostatic at 0.8 m depth
     dots = axis.scatter(positions[:, 0], positions[:, 1], c=pressure, s=4, cmap="viridis", vmin=0.0, vmax=top)
     figure.colorbar(dots, ax=axis, label="pressure (Pa)")
     axis.set_aspect("equal")

@@ -69,7 +69,8 @@ class Outputs {
         return open_probe_file(context.folder->probes() / (name + ".csv"), std::move(columns), c.field_interval,
                                resume_time);
       };
-      for (const auto& probe : c.probes) probe_files_.push_back(open(probe.name, probe_columns(probe.quantity, depth_suffix_)));
+      for (const auto& probe : c.probes)
+        probe_files_.push_back(open(probe.name, probe_columns(probe.quantity, depth_suffix_)));
       global_ = open("fluid", {"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
                                "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_, "force_z_N" + depth_suffix_,
                                "kinetic_energy_J" + depth_suffix_, "time_step_s", "ppe_iterations",

@@ -7,7 +7,6 @@
 
 #include "sph_solver/isph/fluid_probes.hpp"
 #include "sph_solver/isph/fluid_solver.hpp"
-#include "sph_solver/particles/filling.hpp"
 #include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
 

@@ -48,7 +48,8 @@ TEST_CASE("wall contacts round a plate's top (a convex edge)", "[wall_geometry]"
 TEST_CASE("wall contacts just outside a faceted cylinder's edge: crossed, touching", "[wall_geometry]") {
   // R = 1 m in 32 facets: the vertical edge at angle 0 is at (1, 0, z). A particle 3 mm
   // outside it projects beyond both facets' edges (beside them) and is behind both.
-  const FluidModel model = tankfsi::test::water();
+  FluidModel model = tankfsi::test::water();
+  model.dimension = 3;
   const Kernel kernel(model.kernel, 3, model.smoothing_length);
   const WallModel walls(make_cylindrical_tank(1.0, 1.0, 32, 8, 4), model, kernel);
   const std::vector<Vector3d> x{{1.003, 0.0, 0.5}};
