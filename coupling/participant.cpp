@@ -555,14 +555,6 @@ void Participant::Impl::resume(const CouplingRestartState& state) {
 std::vector<double> Participant::Impl::output_part() {
   if (side_ == Side::fluid) {
     std::vector<double> slice = exchange_->reduce_to_slice(force_average_.average(window_length()));
-    if (settings_.added_mass_operator) {
-      const std::size_t n = exchange_->global_vertex_count();
-      const std::size_t first = exchange_->slice_offset() / 3;
-      std::vector<double> change = path_.velocity(window_length());
-      for (std::size_t k = 0; k < change.size(); ++k) change[k] -= previous_wall_velocity_[k];
-      add_added_mass_reaction(std::span<const double>(added_mass_).subspan(first * n, slice.size() / 3 * n), first, n,
-                              added_mass_normals_, change, window_length(), slice);
-    }
     return slice;
   }
   if (!displacement_written_)
@@ -824,10 +816,12 @@ void Participant::Impl::repeat(const std::vector<double>& next_input_part) {
 
 void Participant::Impl::read(Field field, double relative_dt, std::span<double> values) const {
   require_initialized("read");
-  const bool fluid_field = field == Field::displacement || field == Field::velocity;
+  const bool fluid_field = field != Field::force;
   if (fluid_field != (side_ == Side::fluid))
     throw CouplingError(std::string("read: the ") + side_name(side_) + " side does not read " +
                         (field == Field::force ? "forces" : "displacements or velocities"));
+  if (field == Field::velocity_change && !settings_.added_mass_operator)
+    throw CouplingError("read: the wall velocity's change is read with coupling.added_mass: computed only");
   if (values.size() != value_count())
     throw CouplingError("read: array of " + std::to_string(values.size()) + " values, expected " +
                         std::to_string(value_count()));
@@ -841,10 +835,13 @@ void Participant::Impl::read(Field field, double relative_dt, std::span<double> 
     mesh_scratch_.resize(3 * exchange_->global_vertex_count());
     on_mesh = mesh_scratch_;
   }
-  if (field == Field::displacement)
+  if (field == Field::displacement) {
     path_.at(fraction, on_mesh);
-  else
+  } else {
     path_.velocity(window_length(), on_mesh);
+    if (field == Field::velocity_change)
+      for (std::size_t k = 0; k < on_mesh.size(); ++k) on_mesh[k] -= previous_wall_velocity_[k];
+  }
   if (mapping_) mapping_->consistent(on_mesh, values);
 }
 
@@ -914,6 +911,7 @@ void Participant::advance(double dt) { impl_->advance(dt); }
 bool Participant::requires_writing_checkpoint() { return impl_->take(impl_->write_checkpoint_); }
 bool Participant::requires_reading_checkpoint() { return impl_->take(impl_->read_checkpoint_); }
 bool Participant::window_completed() const { return impl_->window_completed_; }
+bool Participant::at_window_start() const { return impl_->elapsed_ == 0.0; }
 const std::vector<WindowReport>& Participant::window_reports() const { return impl_->reports_; }
 CouplingTimings Participant::timings() const { return {impl_->link_.wait_seconds(), impl_->work_seconds_}; }
 void Participant::finalize() { impl_->finalize(); }

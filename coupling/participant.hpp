@@ -30,8 +30,9 @@
 //   With coupling.added_mass: computed (PROTOCOL.md, "Added mass") the fluid
 //   writes the added-mass operator (write_added_mass) before initialize(); the
 //   structure takes its rows (added_mass()) after initialize() and carries
-//   them in its inertia; every force it reads then holds back the impulse the
-//   operator gives for the change of the fluid's wall velocity at the window start.
+//   them in its inertia; the fluid holds back from the forces it writes the
+//   impulse its liquid gave for its wall's velocity change at the window start
+//   (read(Field::velocity_change) at at_window_start()).
 // Time (eqs 16-18): the fluid's forces are averaged over the window (eq 16);
 // the structure reads them ramped (eq 17, chi); the fluid reads a wall moving
 // with constant velocity over the window (eq 18).
@@ -50,7 +51,11 @@
 
 namespace tankfsi::coupling {
 
-enum class Field { force, displacement, velocity };
+/// velocity_change: the fluid's, with coupling.added_mass: computed — the
+/// wall velocity of this window less that of the last accepted one (zero
+/// before the first), V - V' of eq 18: the jump the fluid's wall makes at the
+/// window's start (PROTOCOL.md, "Added mass").
+enum class Field { force, displacement, velocity, velocity_change };
 
 /// The added-mass operator as the structure receives it (PROTOCOL.md, "Added
 /// mass"; coupling/added_mass/added_mass.hpp): `normals`, 3 per interface
@@ -165,6 +170,8 @@ class Participant {
   [[nodiscard]] bool requires_reading_checkpoint();
   /// True when the last advance() ended a window that was accepted.
   [[nodiscard]] bool window_completed() const;
+  /// True before the first advance() of a window (also of a repeated one).
+  [[nodiscard]] bool at_window_start() const;
   /// Reports of every accepted window so far.
   [[nodiscard]] const std::vector<WindowReport>& window_reports() const;
   [[nodiscard]] CouplingTimings timings() const;

@@ -21,8 +21,9 @@ std::vector<KeySpec> coupling_keys() {
                  "Added-mass partitioning (coupling/PROTOCOL.md, 'Added mass'): none (the paper), or computed: "
                  "at t = 0 the fluid computes the added-mass operator of the wetted surface with its own "
                  "pressure equation (one solve per interface vertex), the structure carries it in its "
-                 "inertia, and the fluid's forces hold back the impulse the operator gives for its wall's "
-                 "change of velocity. Keeps staggered coupling stable where the liquid outweighs the wall.")
+                 "inertia, and the fluid's forces leave out the impulse its liquid gives for the wall's change "
+                 "of velocity at each window start (one more pressure solve per window). Keeps staggered "
+                 "coupling stable where the liquid outweighs the wall.")
           .default_is("none"),
       choice_key("coupling.first", {"fluid", "structure"},
                  "Which program advances a window first (sequential staggered and serial implicit).")

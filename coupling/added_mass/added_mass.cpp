@@ -39,22 +39,4 @@ void symmetrise(std::span<double> matrix, std::size_t size) {
     }
 }
 
-void add_added_mass_reaction(std::span<const double> rows, std::size_t first_row, std::size_t columns,
-                             std::span<const double> normals, std::span<const double> change, double window,
-                             std::span<double> values) {
-  // The normal component of each column vertex's velocity change, once.
-  std::vector<double> normal_change(columns);
-  for (std::size_t j = 0; j < columns; ++j)
-    normal_change[j] = normals[3 * j] * change[3 * j] + normals[3 * j + 1] * change[3 * j + 1] +
-                       normals[3 * j + 2] * change[3 * j + 2];
-  const std::size_t row_count = values.size() / 3;
-  for (std::size_t r = 0; r < row_count; ++r) {
-    double impulse = 0.0;
-    const double* row = rows.data() + r * columns;
-    for (std::size_t j = 0; j < columns; ++j) impulse += row[j] * normal_change[j];
-    const std::size_t i = first_row + r;
-    for (std::size_t c = 0; c < 3; ++c) values[3 * r + c] += normals[3 * i + c] * impulse / window;
-  }
-}
-
 }  // namespace tankfsi::coupling

@@ -8,18 +8,30 @@
 // (Causin, Gerbeau & Nobile 2005). The remedy of added-mass partitioned
 // schemes (Banks, Henshaw & Schwendeman 2014): the structure carries an
 // estimate of the added mass in its own inertia, where it acts at once, and
-// the fluid's forces hold back what the estimate already supplies, so only
-// the remainder between the liquid's true response and the estimate is late.
+// the fluid holds back from its forces the impulse its liquid gave for the
+// wall's velocity change at the window start, which that inertia stands for.
 //
 // The estimate here is the fluid's own discrete operator: A_ij, the impulse
 // the liquid's pressure puts on vertex i (its component along the vertex
 // normal n_i, against the motion) when vertex j starts moving along n_j at
 // unit speed from rest — one pressure Poisson solve per vertex j, at t = 0.
 // The structure's added mass is the block n_i A_ij n_j^T between the
-// translations of vertices i and j; the fluid's window forces get back
-// n_i sum_j A_ij n_j . (V_j - V'_j) / dt_c, V and V' the wall velocities of
-// this window and the last (eq 18): the impulse -A dV its pressure gave when
-// the wall's velocity changed at the window start.
+// translations of vertices i and j.
+//
+// What is held back is measured, not estimated: the fluid solves its pressure
+// Poisson equation once more at the window's first step with the velocity
+// change V - V' of its wall (eq 18) as the only source, and takes the normal
+// part of that pressure's impulse on each interface vertex out of the
+// window's force. Holding back A (V - V') instead — the estimate's impulse —
+// leaves the liquid's true response less A a window late: where the liquid's
+// added mass has fallen below A (a wall the sloshing liquid has drained near
+// its surface), that lagged remainder pushes along the last window's
+// acceleration, a negative damping of about (A - A_true) / (M + A) × w dt_c / 2
+// for a wall mode of angular frequency w, which grew a 55 ms wall mode of the
+// coarse tank (cases/tank3d_fixed_roof_coarse) until it diverged. With the
+// measured impulse held back the structure meets the liquid's inertia once,
+// implicitly, as A: an estimate that is off shifts a wall mode's period
+// (sqrt((M + A) / (M + A_true))) but does not feed it.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -36,13 +48,5 @@ namespace tankfsi::coupling {
 /// (A + A^T) / 2 of a square row-major matrix, in place: the operator the
 /// partners use is symmetric whatever round-off the fluid's solves left.
 void symmetrise(std::span<double> matrix, std::size_t size);
-
-/// Adds the impulse the estimate supplies back to window averages:
-/// values_i += n_i sum_j A_ij (n_j . change_j) / window for the rows
-/// first_row .. first_row + values.size()/3 of A (row-major, `columns` wide),
-/// `normals` and `change` (3 per vertex) over all columns.
-void add_added_mass_reaction(std::span<const double> rows, std::size_t first_row, std::size_t columns,
-                             std::span<const double> normals, std::span<const double> change, double window,
-                             std::span<double> values);
 
 }  // namespace tankfsi::coupling

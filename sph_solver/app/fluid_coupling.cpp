@@ -59,6 +59,12 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
   participant_.set_own_vertices(coupled_positions);
   values_.assign(3 * coupled_.size(), 0.0);
   wall_velocity_.assign(values_.size(), 0.0);
+  if (coupling::read_coupling_settings(context.config).added_mass_operator) {
+    const std::vector<double> normals = participant_.interface_normals();
+    for (std::size_t v = 0; 3 * v < normals.size(); ++v)
+      held_back_normals_.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+    velocity_change_.assign(values_.size(), 0.0);
+  }
   participant_.set_restart_interval(context.config.real("output.checkpoint_interval"));
   if (resume) {
     participant_.resume(*resume);  // the added mass, if any, is in the restart state
@@ -108,6 +114,16 @@ void FluidCoupling::before_step(double dt) {
     velocities_[v] = Eigen::Vector3d(wall_velocity_[3 * k], wall_velocity_[3 * k + 1], wall_velocity_[3 * k + 2]);
   }
   solver_.move_walls(positions_, velocities_);
+  if (!held_back_normals_.empty() && participant_.at_window_start()) {
+    participant_.read(coupling::Field::velocity_change, dt, velocity_change_);
+    if (std::any_of(velocity_change_.begin(), velocity_change_.end(), [](double c) { return c != 0.0; })) {
+      std::vector<Eigen::Vector3d> jump(reference_.size(), Eigen::Vector3d::Zero());
+      for (std::size_t k = 0; k < coupled_.size(); ++k)
+        jump[static_cast<std::size_t>(coupled_[k])] =
+            Eigen::Vector3d(velocity_change_[3 * k], velocity_change_[3 * k + 1], velocity_change_[3 * k + 2]);
+      solver_.set_wall_velocity_jump(std::move(jump));
+    }
+  }
 }
 
 void FluidCoupling::write_forces(const std::vector<Eigen::Vector3d>& forces) {
@@ -119,7 +135,20 @@ void FluidCoupling::write_forces(const std::vector<Eigen::Vector3d>& forces) {
 }
 
 bool FluidCoupling::after_step(double dt) {
-  write_forces(solver_.local_wall_forces());
+  const std::vector<Eigen::Vector3d>& jump = solver_.local_jump_impulse();
+  if (jump.empty()) {
+    write_forces(solver_.local_wall_forces());
+  } else {
+    // The structure carries the liquid's inertia against the jump as its added
+    // mass along the interface normals: that part of the step's force stays here.
+    std::vector<Eigen::Vector3d> forces = solver_.local_wall_forces();
+    for (std::size_t k = 0; k < held_back_normals_.size(); ++k) {
+      const auto v = static_cast<std::size_t>(coupled_[k]);
+      const Eigen::Vector3d& n = held_back_normals_[k];
+      forces[v] -= n * (n.dot(jump[v]) / dt);
+    }
+    write_forces(forces);
+  }
   participant_.advance(dt);
   rolled_back_ = participant_.requires_reading_checkpoint();
   if (rolled_back_) {

@@ -13,6 +13,12 @@
 // [-d/2, d/2]); its wall forces are per unit depth, and the structure (a strip
 // across the section) receives the forces on the depth d: f d.
 //
+// With the added-mass operator (coupling.added_mass: computed) the forces
+// sent leave out the normal part of the impulse the liquid's pressure gave for
+// the wall's velocity change at each window's start, measured by one more PPE
+// solve at the window's first step (coupling/added_mass/added_mass.hpp): the
+// structure carries that inertia itself.
+//
 // At t = 0 the structure receives the forces of the liquid as it starts
 // (FluidSolver::present_wall_forces): a structure that balances them (its
 // initial acceleration) does not meet the liquid's weight as a sudden load.
@@ -45,7 +51,9 @@ class FluidCoupling {
   [[nodiscard]] double max_time_step() const { return participant_.max_time_step(); }
   [[nodiscard]] bool repeats_windows() const { return repeats_; }
   /// Before a step of dt: saves the state at a window start (implicit) and
-  /// moves the coupled wall vertices to where the structure is at the step's end.
+  /// moves the coupled wall vertices to where the structure is at the step's
+  /// end; at a window start with the added-mass operator, has the step measure
+  /// the impulse of the wall's velocity change.
   void before_step(double dt);
   /// After the step: gives the step's wall forces and advances the coupling;
   /// true when a window was accepted; false mid-window or when the window
@@ -78,8 +86,13 @@ class FluidCoupling {
   std::vector<Eigen::Vector3d> positions_, velocities_;
   FluidSolver::Checkpoint checkpoint_;
   double mapping_distance_ = 0.0;
-  double force_scale_ = 1.0;
-  double added_mass_ = 0.0;  ///< sum of the added-mass operator's entries (kg), coupling.added_mass: computed  ///< the section depth in 2D (forces per unit depth -> on the section)
+  double force_scale_ = 1.0;  ///< the section depth in 2D (forces per unit depth -> on the section)
+  double added_mass_ = 0.0;  ///< sum of the added-mass operator's entries (kg), coupling.added_mass: computed
+  /// coupling.added_mass: computed: the interface vertices' normals (the
+  /// operator's directions), along which the impulse of the wall's velocity
+  /// change at each window start is held back from the forces sent.
+  std::vector<Eigen::Vector3d> held_back_normals_;
+  std::vector<double> velocity_change_;  ///< 3 per coupled vertex
 };
 
 }  // namespace tankfsi::sph

@@ -272,7 +272,6 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
   for (std::size_t j = 0; j < count; ++j) column_of_vertex[at(vertices[j])] = static_cast<int>(j);
   struct Touch {
     int contact;
-    int particle;
     double weight;  ///< the vertex's barycentric weight at the contact's closest point
   };
   std::vector<std::vector<Touch>> touching(count);
@@ -281,7 +280,7 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
       const auto& triangle = walls_.mesh().triangles()[at(contacts.contacts[at(c)].triangle)];
       for (int k = 0; k < 3; ++k)
         if (const int j = column_of_vertex[at(triangle[at(k)])]; j >= 0)
-          touching[at(j)].push_back({c, i, contacts.contacts[at(c)].barycentric[k]});
+          touching[at(j)].push_back({c, contacts.contacts[at(c)].barycentric[k]});
     }
   Neighbourhood n{kernel_, model_, now.position, now.neighbours, contacts, walls_.mesh(), owned};
   const auto kernel_sum = with_ghosts(halo_, kernel_density(n, mass));
@@ -290,27 +289,33 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
   const auto density =
       with_ghosts(halo_, completed_density(kernel_sum, air, model_.density * walls_.table().lattice_share()));
   ppe_.assemble(n, mass, density, index, std::vector<unsigned char>(mass.size(), 0));
-  // With dt = 1 and v* = 0 the projection's pressure is the pressure impulse
-  // and the walls' reaction (force times dt) the impulse on each vertex.
-  const double dt = 1.0;
-  const std::vector<Eigen::Vector3d> at_rest(at(owned), Eigen::Vector3d::Zero());
   std::vector<double> matrix(count * count, 0.0);
-  std::vector<double> source(at(owned)), pressure;
-  std::vector<Eigen::Vector3d> impulse(walls_.mesh().vertex_count());
+  std::vector<double> pressure;
   for (std::size_t j = 0; j < count; ++j) {
     for (const Touch& t : touching[j]) contacts.contacts[at(t.contact)].velocity = t.weight * normals[j];
-    std::fill(source.begin(), source.end(), 0.0);
-    for (const Touch& t : touching[j]) source[at(t.particle)] = -wall_laplacian_share(n, t.particle, at_rest[0], dt);
-    pressure.assign(at(owned), 0.0);
-    ppe_.solve_assembled(source, pressure);
-    halo_.exchange(pressure);
-    std::fill(impulse.begin(), impulse.end(), Eigen::Vector3d::Zero());
-    static_cast<void>(pressure_acceleration(n, mass, density, pressure, at_rest, dt, impulse));
+    const auto impulse = wall_motion_impulse(n, mass, density, pressure);
     // The liquid pushes back against the motion: A_ij = -impulse_i . n_i.
     for (std::size_t i = 0; i < count; ++i) matrix[i * count + j] = -impulse[at(vertices[i])].dot(normals[i]);
     for (const Touch& t : touching[j]) contacts.contacts[at(t.contact)].velocity.setZero();
   }
   return matrix;
+}
+
+std::vector<Eigen::Vector3d> FluidSolver::wall_motion_impulse(const Neighbourhood& n, std::span<const double> mass,
+                                                             std::span<const double> density,
+                                                             std::vector<double>& pressure) {
+  // With dt = 1 and v* = 0 the projection's pressure is the pressure impulse
+  // and the walls' reaction (force times dt) the impulse on each vertex.
+  const double dt = 1.0;
+  const std::vector<Eigen::Vector3d> at_rest(at(n.owned), Eigen::Vector3d::Zero());
+  std::vector<double> source(at(n.owned));
+  for (int i = 0; i < n.owned; ++i) source[at(i)] = -wall_laplacian_share(n, i, at_rest[0], dt);
+  pressure.assign(at(n.owned), 0.0);
+  ppe_.solve_assembled(source, pressure);
+  halo_.exchange(pressure);
+  std::vector<Eigen::Vector3d> impulse(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
+  static_cast<void>(pressure_acceleration(n, mass, density, pressure, at_rest, dt, impulse));
+  return impulse;
 }
 
 std::vector<std::int64_t> FluidSolver::global_indices() const {
@@ -426,6 +431,28 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     } catch (const std::runtime_error& e) {
       throw std::runtime_error(step_prefix(t) + e.what());
     }
+  }
+
+  // The walls' velocity jump's share of the step (set_wall_velocity_jump()).
+  jump_impulse_.clear();
+  if (!wall_velocity_jump_.empty()) {
+    auto scope = stage("wall_jump");
+    const TriangleMesh& mesh = walls_.mesh();
+    WallContacts jumped = next.walls;
+    for (WallContact& c : jumped.contacts) {
+      const auto& corner = mesh.triangles()[at(c.triangle)];
+      c.velocity = c.barycentric[0] * wall_velocity_jump_[at(corner[0])] +
+                   c.barycentric[1] * wall_velocity_jump_[at(corner[1])] +
+                   c.barycentric[2] * wall_velocity_jump_[at(corner[2])];
+    }
+    Neighbourhood moved{kernel_, model_, next.position, next.neighbours, jumped, mesh, owned, n.surface};
+    std::vector<double> jump_pressure;
+    try {
+      jump_impulse_ = wall_motion_impulse(moved, mass, density, jump_pressure);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(step_prefix(t) + "the walls' velocity jump: " + e.what());
+    }
+    wall_velocity_jump_.clear();
   }
 
   // 3. Corrector and positions; 4. shifting.

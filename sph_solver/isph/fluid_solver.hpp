@@ -156,6 +156,18 @@ class FluidSolver {
   /// This rank's contribution to the force of the fluid on each wall vertex in the
   /// last step (sum over ranks with total_wall_forces()).
   [[nodiscard]] const std::vector<Eigen::Vector3d>& local_wall_forces() const { return wall_force_; }
+
+  /// The change of the walls' vertex velocities at the start of the next step
+  /// (a coupled window's start, V - V' of eq 18; one vector per wall vertex),
+  /// whose share of that step's wall forces the step measures apart: one more
+  /// PPE solve with the step's operator and the walls' motion as the only
+  /// source (as added_mass_operator() does for one vertex at a time). Used
+  /// once: the step after has no jump unless set again.
+  void set_wall_velocity_jump(std::vector<Eigen::Vector3d> jump) { wall_velocity_jump_ = std::move(jump); }
+  /// This rank's share of the impulse on each wall vertex of the last step's
+  /// velocity jump (the jump's part of local_wall_forces() times the step);
+  /// empty if that step had none.
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& local_jump_impulse() const { return jump_impulse_; }
   /// Collective: the wall forces of the last step summed over the ranks.
   [[nodiscard]] std::vector<Eigen::Vector3d> total_wall_forces() const;
   /// Collective: all particles removed so far and their volume (mass / rho0).
@@ -186,6 +198,13 @@ class FluidSolver {
   /// (the walls as they are at the step's end).
   void check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const;
   void redistribute();
+  /// The impulse on each wall vertex (this rank's share) of the pressure of
+  /// one projection whose only source is the walls' motion as n.walls holds
+  /// it (the contacts' velocities), with v* = 0 and dt = 1, by the PPE
+  /// operator last assembled; `pressure` is the solution (owned and ghosts).
+  [[nodiscard]] std::vector<Eigen::Vector3d> wall_motion_impulse(const Neighbourhood& n, std::span<const double> mass,
+                                                                 std::span<const double> density,
+                                                                 std::vector<double>& pressure);
   /// Balances, migrates and puts the owned particles in cell order.
   void rebalance();
   StageTimers::Scope stage(const std::string& name);
@@ -203,6 +222,8 @@ class FluidSolver {
   StageTimers* timers_;
   StageTimers fallback_timers_;
   std::vector<Eigen::Vector3d> wall_force_;
+  std::vector<Eigen::Vector3d> wall_velocity_jump_;  ///< set_wall_velocity_jump(), for the next step
+  std::vector<Eigen::Vector3d> jump_impulse_;        ///< local_jump_impulse()
   std::vector<double> predicted_density_;
   std::vector<double> free_surface_flags_;
   long long steps_ = 0;

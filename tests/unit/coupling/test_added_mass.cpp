@@ -2,14 +2,17 @@
 // against hand values, and a partnered case against the monolithic answer.
 //
 // The partnered case is the added-mass instability in its purest form: a
-// "liquid" whose only response is inertia, the impulse -m_a dV on each
+// "liquid" whose only response is inertia, the impulse -m_l dV on each
 // interface vertex when the wall's velocity changes by dV (what an
 // incompressible fluid's pressure does at the start of a window, eq 18), on
-// a light wall (m_a = 100 m) held by a spring, under a constant load. The
-// monolithic answer is x(t) = F0/k (1 - cos w t), w^2 = k / (m + m_a).
-// Explicit staggering without the operator blows up; with it the structure
-// carries m_a and the fluid's window forces hold the impulse back, so the
-// structure meets F0 alone.
+// a light wall (m_l = 100 m) held by a spring, under a constant load.
+// Explicit staggering without the operator blows up. With it the structure
+// carries the operator's estimate m_a in its inertia and the fluid holds back
+// the impulse of the velocity change the library reports at each window start
+// (Field::velocity_change), so the structure meets F0 alone: x(t) = F0/k
+// (1 - cos w t), w^2 = k / (m + m_a) — whatever the liquid's true m_l, here
+// 0.6, 1 and 1.5 times the estimate (a liquid drained from the wall or risen
+// on it since the operator was taken).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -50,21 +53,10 @@ TEST_CASE("vertex normals of a flat and a folded mesh", "[coupling][added_mass]"
   CHECK(m[5] == Approx(1.0 / std::sqrt(5.0)));
 }
 
-TEST_CASE("the operator is made symmetric and gives the impulse back along the normals", "[coupling][added_mass]") {
+TEST_CASE("the operator is made symmetric", "[coupling][added_mass]") {
   std::vector<double> a{2.0, 1.0, 3.0, 4.0};  // 2 x 2
   symmetrise(a, 2);
   CHECK(a == std::vector<double>{2.0, 2.0, 2.0, 4.0});
-  // Vertex 0 along +x, vertex 1 along +y; velocity changes dV_0 = (1, 5, 0), dV_1 = (0, -2, 0).
-  const std::vector<double> normals{1, 0, 0, 0, 1, 0};
-  const std::vector<double> change{1, 5, 0, 0, -2, 0};
-  std::vector<double> values(6, 0.0);
-  add_added_mass_reaction(a, 0, 2, normals, change, 0.5, values);
-  // n_i sum_j A_ij (n_j . dV_j) / dt_c: row 0: (2*1 + 2*(-2)) / 0.5 = -4 along x; row 1: (2*1 + 4*(-2)) / 0.5 = -12 along y.
-  CHECK(values == std::vector<double>{-4.0, 0.0, 0.0, 0.0, -12.0, 0.0});
-  // Rows 1.. only (a fluid rank's slice starting at vertex 1).
-  std::vector<double> slice(3, 0.0);
-  add_added_mass_reaction(std::span<const double>(a).subspan(2), 1, 2, normals, change, 0.5, slice);
-  CHECK(slice == std::vector<double>{0.0, -12.0, 0.0});
 }
 
 namespace {
@@ -84,7 +76,8 @@ struct AddedMassResult {
 /// Runs both sides. The interface: a strip of triangles in the plane x = 0,
 /// vertex k at (0, k mod 2, k / 2) (normals along x), declared by structure
 /// rank k mod ranks; every vertex moves along x only.
-AddedMassResult run_added_mass_case(const PartnerSplit& split, CouplingSettings settings, int vertices) {
+AddedMassResult run_added_mass_case(const PartnerSplit& split, CouplingSettings settings, int vertices,
+                                    double liquid_share) {
   int rank = 0, size = 1;
   MPI_Comm_rank(split.local, &rank);
   MPI_Comm_size(split.local, &size);
@@ -118,23 +111,28 @@ AddedMassResult run_added_mass_case(const PartnerSplit& split, CouplingSettings 
       for (std::size_t i = 0; i < n; ++i) matrix[i * n + i] = added_mass_of(mesh.ids[i]) / static_cast<double>(size);
       p.write_added_mass(matrix);
     }
-    std::vector<double> force(3 * n, 0.0), velocity(3 * n, 0.0), previous(3 * n, 0.0);
+    std::vector<double> force(3 * n, 0.0), velocity(3 * n, 0.0), previous(3 * n, 0.0), change(3 * n, 0.0);
     // The load, on fluid rank 0 only (partial sums over the ranks).
-    const auto write_force = [&](double step) {
+    const auto write_force = [&](double step, bool window_start) {
       for (std::size_t i = 0; i < n; ++i) {
         force[3 * i] = rank == 0 ? load : 0.0;
-        // The liquid's inertia: an impulse -m_a dV where the wall's velocity changed.
-        force[3 * i] -= added_mass_of(mesh.ids[i]) / static_cast<double>(size) * (velocity[3 * i] - previous[3 * i]) / step;
+        // The liquid's inertia: an impulse -m_l dV where the wall's velocity changed.
+        const double liquid_mass = liquid_share * added_mass_of(mesh.ids[i]) / static_cast<double>(size);
+        force[3 * i] -= liquid_mass * (velocity[3 * i] - previous[3 * i]) / step;
+        // Held back (the structure carries it): the same impulse, of the change the library reports.
+        if (settings.added_mass_operator && window_start) force[3 * i] += liquid_mass * change[3 * i] / step;
       }
       p.write(Field::force, force);
     };
-    write_force(1.0);
+    write_force(1.0, false);
     p.initialize();
     while (p.is_ongoing()) {
       const double step = std::min(dt, p.max_time_step());
+      const bool window_start = p.at_window_start();
       previous = velocity;
       p.read(Field::velocity, step, velocity);
-      write_force(step);
+      if (settings.added_mass_operator && window_start) p.read(Field::velocity_change, step, change);
+      write_force(step, window_start);
       p.advance(step);
     }
   } else {
@@ -191,8 +189,9 @@ AddedMassResult run_added_mass_case(const PartnerSplit& split, CouplingSettings 
 // Measured on 1:1: without the operator the staggered schemes reach 1e117
 // (parallel) and 1e230 (sequential) times the static displacement within
 // 0.6 s; with it the error is 1.44e-3, Newmark's own phase error
-// (w dt)^2 / 12 per radian over w t = 19 rad: 1.6e-3 (the fluid's impulse and
-// the library's give-back cancel exactly, so the structure meets F0 alone).
+// (w dt)^2 / 12 per radian over w t = 19 rad: 1.6e-3 (the liquid's impulse and
+// the held-back one cancel exactly, so the structure meets F0 alone), for a
+// liquid of 0.6, 1 and 1.5 times the operator's mass alike.
 TEST_CASE("explicit staggering of a wall under 100 times its mass of liquid: the operator keeps it stable",
           "[coupling][added_mass]") {
   int rank = 0;
@@ -200,24 +199,27 @@ TEST_CASE("explicit staggering of a wall under 100 times its mass of liquid: the
   for (const int fluid_ranks : fluid_rank_choices()) {
     PartnerSplit split(fluid_ranks);
     for (const auto scheme : {Scheme::parallel_staggered, Scheme::sequential_staggered}) {
-      for (const bool with_operator : {false, true}) {
-        CouplingSettings settings;
-        settings.scheme = scheme;
-        settings.first = Side::structure;
-        settings.time_window = 0.004;
-        settings.hold_window_average = true;
-        settings.added_mass_operator = with_operator;
-        settings.timeout = 60;
-        const AddedMassResult r = run_added_mass_case(split, settings, 7);
-        if (rank == 0)
-          std::printf("%d:%d %s staggered %s the operator: error %.3g\n", fluid_ranks, split.structure_ranks,
-                      scheme == Scheme::parallel_staggered ? "parallel" : "sequential",
-                      with_operator ? "with" : "without", r.max_error);
-        CAPTURE(fluid_ranks, static_cast<int>(scheme), with_operator, r.max_error);
-        if (with_operator)
-          CHECK(r.max_error < 0.01);
-        else
-          CHECK(!(r.max_error < 10.0));
+      for (const double liquid_share : {0.6, 1.0, 1.5}) {
+        for (const bool with_operator : {false, true}) {
+          if (!with_operator && liquid_share != 1.0) continue;
+          CouplingSettings settings;
+          settings.scheme = scheme;
+          settings.first = Side::structure;
+          settings.time_window = 0.004;
+          settings.hold_window_average = true;
+          settings.added_mass_operator = with_operator;
+          settings.timeout = 60;
+          const AddedMassResult r = run_added_mass_case(split, settings, 7, liquid_share);
+          if (rank == 0)
+            std::printf("%d:%d %s staggered %s the operator, liquid %.1f of it: error %.3g\n", fluid_ranks,
+                        split.structure_ranks, scheme == Scheme::parallel_staggered ? "parallel" : "sequential",
+                        with_operator ? "with" : "without", liquid_share, r.max_error);
+          CAPTURE(fluid_ranks, static_cast<int>(scheme), with_operator, liquid_share, r.max_error);
+          if (with_operator)
+            CHECK(r.max_error < 0.01);
+          else
+            CHECK(!(r.max_error < 10.0));
+        }
       }
     }
   }
