@@ -51,6 +51,21 @@ double spline_shape_slope(const TruncatedPowerSum& shape, double q) {
   return slope;
 }
 
+// w and dw/dq together: each term's (a_k - q)^(n-1) serves both (w takes one
+// more factor, in the order integer_power multiplies, so the bits are the same).
+void spline_shape_and_slope(const TruncatedPowerSum& shape, double q, double& w, double& slope) {
+  w = 0.0;
+  slope = 0.0;
+  for (std::size_t k = 0; k < shape.knots.size(); ++k) {
+    if (q < shape.knots[k]) {
+      const double base = shape.knots[k] - q;
+      const double lower = integer_power(base, shape.power - 1);
+      w += shape.coefficients[k] * (lower * base);
+      slope -= shape.power * shape.coefficients[k] * lower;
+    }
+  }
+}
+
 // Wendland C2 in q = r/h with support 2h (Dehnen & Aly 2012, rescaled from support 1):
 // w = (1 - q/2)^4 (2q + 1);  dw/dq = (1 - q/2)^3 [-2(2q + 1) + 2(1 - q/2)] = -5 q (1 - q/2)^3.
 double wendland_shape(double q) {
@@ -160,6 +175,23 @@ double Kernel::derivative(double r) const {
     case KernelType::wendland_c2: return derivative_factor_ * wendland_shape_slope(q);
   }
   return 0.0;
+}
+
+void Kernel::value_and_derivative(double r, double& value, double& slope) const {
+  value = 0.0;
+  slope = 0.0;
+  if (r >= support_radius_) return;
+  const double q = r * inverse_smoothing_length_;
+  switch (type_) {
+    case KernelType::quintic_spline: spline_shape_and_slope(quintic_shape, q, value, slope); break;
+    case KernelType::quartic_spline: spline_shape_and_slope(quartic_shape, q, value, slope); break;
+    case KernelType::wendland_c2:
+      value = wendland_shape(q);
+      slope = wendland_shape_slope(q);
+      break;
+  }
+  value *= value_factor_;
+  slope *= derivative_factor_;
 }
 
 Eigen::Vector3d Kernel::gradient(const Eigen::Vector3d& x_ij) const { return gradient(x_ij, x_ij.norm()); }

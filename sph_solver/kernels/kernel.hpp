@@ -50,6 +50,9 @@ class Kernel {
   [[nodiscard]] double value(double r) const;
   /// dW/dr at r >= 0; zero at r = 0 and for r >= support_radius().
   [[nodiscard]] double derivative(double r) const;
+  /// W(r) and dW/dr together, bit for bit as value() and derivative() (the
+  /// neighbour list's pairs take both).
+  void value_and_derivative(double r, double& value, double& slope) const;
   /// grad_i W_ij = x_ij / r * dW/dr with x_ij = x_i - x_j; zero at r = 0.
   [[nodiscard]] Eigen::Vector3d gradient(const Eigen::Vector3d& x_ij) const;
   /// The same when the caller already has r = |x_ij| (neighbour loops do).

@@ -149,10 +149,8 @@ NeighbourList CellList::neighbour_list(const Kernel* kernel, int rows) const {
   if (kernel != nullptr) {
     list.values.resize(list.distances.size());
     list.slopes.resize(list.distances.size());
-    for (std::size_t k = 0; k < list.distances.size(); ++k) {
-      list.values[k] = kernel->value(list.distances[k]);
-      list.slopes[k] = kernel->derivative(list.distances[k]);
-    }
+    for (std::size_t k = 0; k < list.distances.size(); ++k)
+      kernel->value_and_derivative(list.distances[k], list.values[k], list.slopes[k]);
   }
   return list;
 }

@@ -250,6 +250,26 @@ TEST_CASE("kernel and derivative are continuous at the knots and vanish at the s
   }
 }
 
+TEST_CASE("kernel value and derivative together are value() and derivative() bit for bit", "[kernel]") {
+  const double h = 0.023;
+  for (KernelType type : all_types) {
+    for (int dimension : {2, 3}) {
+      const Kernel kernel(type, dimension, h);
+      // Through every piece, onto the knots and the support, and beyond.
+      std::vector<double> radii{0.0, kernel.support_radius(), 1.5 * kernel.support_radius()};
+      for (double knot : knots_in_h(type)) radii.push_back(knot * h);
+      for (int k = 1; k < 777; ++k) radii.push_back(kernel.support_radius() * k / 777.0);
+      for (const double r : radii) {
+        double value = -1.0, slope = -1.0;
+        kernel.value_and_derivative(r, value, slope);
+        INFO(kernel_name(type) << " in " << dimension << "D at r/h = " << r / h);
+        CHECK(value == kernel.value(r));
+        CHECK(slope == kernel.derivative(r));
+      }
+    }
+  }
+}
+
 TEST_CASE("kernel gradient is x_ij / r times dW/dr", "[kernel]") {
   const Kernel kernel(KernelType::quartic_spline, 3, 0.05);
   const Eigen::Vector3d x_ij(0.03, -0.04, 0.012);
