@@ -37,15 +37,19 @@ if ! grep -q '^fluid:' "$case_file"; then
 fi
 
 # A case with fluid and structure runs the two programs as partners of one
-# MPMD job. Both programs couple, but the coupled tank analysis is not yet
-# validated (see the case's README): check the case, write the ground motion
-# it applies, and say how to launch the pair.
-missing=("a validated coupled tank analysis")
-if [[ ${#missing[@]} -gt 0 ]]; then
-  echo "run.sh: not ready yet: ${missing[*]} -- checking the case and its ground motion only"
-  echo "run.sh: the coupled pair runs as: mpirun -np 1 build/bin/sph_solver $case_file --output runs/NAME : -np 1 build/bin/fem_solver $case_file --output runs/NAME"
-  build/bin/tankfsi_case "$case_file" --prepare --output "$run_dir" "${overrides[@]}"
-  /usr/bin/python3 scripts/post/plot_probes.py "$run_dir"
-  echo "run.sh: results in $run_dir"
-  exit 0
+# MPMD job, both writing into the run folder (fluid/, structure/), and the
+# tank report follows: plots/*.png and report.md. The fluid gets every core
+# (TANKFSI_FLUID_RANKS), the structure one rank beside it
+# (TANKFSI_STRUCTURE_RANKS); the structure mostly waits for the fluid.
+fluid_ranks=${TANKFSI_FLUID_RANKS:-$jobs}
+structure_ranks=${TANKFSI_STRUCTURE_RANKS:-1}
+echo "run.sh: coupled run of $case_file: sph_solver on $fluid_ranks rank(s), fem_solver on $structure_ranks"
+status=0
+mpirun -np "$fluid_ranks" build/bin/sph_solver "$case_file" --output "$run_dir" "${overrides[@]}" : \
+       -np "$structure_ranks" build/bin/fem_solver "$case_file" --output "$run_dir" "${overrides[@]}" || status=$?
+if [[ $status -ne 0 ]]; then
+  echo "run.sh: the coupled run failed (exit status $status); its logs, last good state and what it wrote are in $run_dir" >&2
+  exit "$status"
 fi
+/usr/bin/python3 scripts/post/tank_report.py "$run_dir"
+echo "run.sh: report $run_dir/report.md (plots in $run_dir/plots; open $run_dir/fluid/fluid.xdmf and $run_dir/structure/structure.xdmf in ParaView)"

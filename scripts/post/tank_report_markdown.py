@@ -1,10 +1,12 @@
 """RUN/report.md of a tank run from the combined summary (tank_report.py):
 title and case, input motion, the key figures with units, the natural
-periods identified against theory (with a marked place the case README
-fills: this report does not explain differences), roof clearance, settings,
+periods identified against theory (where they differ, the case README's
+"Periods against theory" section, or a marked place for it: this report
+does not explain differences itself), roof clearance, settings,
 run time, plots and what the run lacks. One function per section.
 """
 import math
+import pathlib
 
 PLACEHOLDER = ("**[To be filled from the case README: where the differences between the identified and the "
                "theory periods come from.]** This report cannot tell it from the run's output and does not guess.")
@@ -102,8 +104,33 @@ def _key_figures(summary):
             + [f"| {q} | {v} | {u} | {w} |" for q, v, u, w in rows] + [""])
 
 
-def _periods(summary):
-    """Identified against theory, every record's outcome, the notes and the placeholder."""
+# The case README's section that says where its periods differ from theory.
+EXPLANATION_HEADING = "## Periods against theory"
+
+
+def case_explanation(case_files):
+    """The text of the case README's EXPLANATION_HEADING section (README.md beside
+    the one case file), and that README's path; (None, None) without one."""
+    if len(case_files) != 1:
+        return None, None
+    readme = pathlib.Path(case_files[0]).parent / "README.md"
+    if not readme.is_file():
+        return None, None
+    lines = readme.read_text().splitlines()
+    if EXPLANATION_HEADING not in lines:
+        return None, None
+    body = []
+    for line in lines[lines.index(EXPLANATION_HEADING) + 1:]:
+        if line.startswith("## "):
+            break
+        body.append(line)
+    text = "\n".join(body).strip()
+    return (text, readme) if text else (None, None)
+
+
+def _periods(summary, case_files):
+    """Identified against theory, every record's outcome, the notes and where the
+    differences come from: the case README's word, or the marked place for it."""
     lines = ["## Natural periods", "",
              "| period | identified | ± 1σ | theory (EN 1998-4 Annex A) | difference |", "|---|---|---|---|---|"]
     for kind, theory_key, label in (("sloshing", "convective_period_theory_s", "sloshing (convective)"),
@@ -131,7 +158,11 @@ def _periods(summary):
     notes = summary["theory_notes"] + [f"{kind}: {note}" for kind, kind_notes in summary["period_notes"].items()
                                        for note in kind_notes]
     lines += [""] + [f"- {note}" for note in notes]
-    return lines + ["", f"Where the differences come from: {PLACEHOLDER}", ""]
+    explanation, readme = case_explanation(case_files)
+    if explanation is None:
+        return lines + ["", f"Where the differences come from: {PLACEHOLDER}", ""]
+    return lines + ["", f"Where the differences come from (the case README, `{readme}`, as measured there; "
+                    "this run's figures are the ones above):", "", explanation, ""]
 
 
 def _roof_clearance(clearance):
@@ -164,7 +195,7 @@ def write_report(run, summary, settings_rows, plots, missing, summary_name):
     lines = _header(run, summary, summary_name)
     lines += _input_motion(summary["input_motion"])
     lines += _key_figures(summary)
-    lines += _periods(summary)
+    lines += _periods(summary, sorted({p.get("case_file") for p in run.provenance.values() if p.get("case_file")}))
     lines += _roof_clearance(summary["roof_clearance"])
     lines += _settings(settings_rows)
     lines += _run_time(summary["run_time"])

@@ -352,7 +352,22 @@ with tempfile.TemporaryDirectory() as scratch:
                                                         "section_snapshot.png"))
           and not (alone / "plots" / "base_shear_overturning.png").exists())
 
-    # 4. The fluid program's own roof clearance is used when it writes one.
+    # 4. The case README's "Periods against theory" section, when it has one, instead of the marked place.
+    case_folder = scratch / "case_with_readme"
+    case_folder.mkdir()
+    (case_folder / "README.md").write_text("# fake\n\n## Periods against theory\n\nThe roof stiffens the wall.\n"
+                                           "\n## Ground motion\n\nnot this\n")
+    explained = scratch / "explained"
+    build_run(explained, structure=False)
+    provenance = json.loads((explained / "fluid" / "provenance.json").read_text())
+    provenance["programs"]["sph_solver"]["case_file"] = str(case_folder / "case.yaml")
+    (explained / "fluid" / "provenance.json").write_text(json.dumps(provenance))
+    run_cli(explained)
+    report = (explained / "report.md").read_text() if (explained / "report.md").is_file() else ""
+    check("the case README's explanation replaces the marked place", "The roof stiffens the wall." in report
+          and "not this" not in report and tank_report_markdown.PLACEHOLDER not in report)
+
+    # 5. The fluid program's own roof clearance is used when it writes one.
     own_clearance = scratch / "own_clearance"
     build_run(own_clearance, structure=False, roof_clearance=2.5)
     summary, _ = tank_report.build_report(own_clearance)
