@@ -439,12 +439,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     auto scope = stage("wall_jump");
     const TriangleMesh& mesh = walls_.mesh();
     WallContacts jumped = next.walls;
-    for (WallContact& c : jumped.contacts) {
-      const auto& corner = mesh.triangles()[at(c.triangle)];
-      c.velocity = c.barycentric[0] * wall_velocity_jump_[at(corner[0])] +
-                   c.barycentric[1] * wall_velocity_jump_[at(corner[1])] +
-                   c.barycentric[2] * wall_velocity_jump_[at(corner[2])];
-    }
+    for (WallContact& c : jumped.contacts) c.velocity = at_contact(mesh, wall_velocity_jump_, c);
     Neighbourhood moved{kernel_, model_, next.position, next.neighbours, jumped, mesh, owned, n.surface};
     std::vector<double> jump_pressure;
     try {

@@ -29,12 +29,6 @@ WallKernelValues curved(WallKernelValues v, double mean_curvature) {
   return v;
 }
 
-Eigen::Vector3d interpolate(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& values, int t,
-                            const Eigen::Vector3d& w) {
-  const auto& tri = mesh.triangles()[at(t)];
-  return w[0] * values[at(tri[0])] + w[1] * values[at(tri[1])] + w[2] * values[at(tri[2])];
-}
-
 /// The smooth wall's normal at barycentric w of triangle t; `plane` (the
 /// triangle's own, as the contact uses it) where all three corners have it.
 Eigen::Vector3d smooth_normal(const WallCornerValues& corners, int t, const Eigen::Vector3d& w,
@@ -142,7 +136,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       contact.distance = height <= 0.0 ? 0.0 : std::sqrt(hit.closest.squared_distance);
       const double h = walls.corner_values().curvature_at(hit.triangle, contact.barycentric);
       contact.values = curved(walls.table().at(contact.distance), h);
-      contact.velocity = interpolate(mesh, walls.vertex_velocities(), hit.triangle, contact.barycentric);
+      contact.velocity = at_contact(mesh, walls.vertex_velocities(), contact);
       result.contacts.push_back(contact);
     }
     result.offsets.push_back(static_cast<int>(result.contacts.size()));
@@ -162,6 +156,13 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
     result.overlap_offsets.push_back(static_cast<int>(result.overlaps.size()));
   }
   return result;
+}
+
+Eigen::Vector3d at_contact(const TriangleMesh& mesh, std::span<const Eigen::Vector3d> vertex_values,
+                           const WallContact& contact) {
+  const auto& tri = mesh.triangles()[at(contact.triangle)];
+  const Eigen::Vector3d& w = contact.barycentric;
+  return w[0] * vertex_values[at(tri[0])] + w[1] * vertex_values[at(tri[1])] + w[2] * vertex_values[at(tri[2])];
 }
 
 void add_wall_force(const TriangleMesh& mesh, const WallContact& contact, const Eigen::Vector3d& force,

@@ -126,6 +126,11 @@ struct WallContacts {
 [[nodiscard]] WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
                                               int dimension);
 
+/// A per-vertex wall field (velocity, ...) at a contact's closest point:
+/// barycentric interpolation over its triangle.
+[[nodiscard]] Eigen::Vector3d at_contact(const TriangleMesh& mesh, std::span<const Eigen::Vector3d> vertex_values,
+                                         const WallContact& contact);
+
 /// Adds the force `force` that particle i exerts on the wall through `contact` to
 /// the contact triangle's vertices, shared by the barycentric weights.
 void add_wall_force(const TriangleMesh& mesh, const WallContact& contact, const Eigen::Vector3d& force,
