@@ -6,11 +6,14 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "common/geometry/segment_triangle.hpp"
 #include "sph_solver/isph/free_surface.hpp"
 #include "sph_solver/isph/particle_terms.hpp"
 #include "sph_solver/neighbours/cell_list.hpp"
+#include "sph_solver/neighbours/neighbour_candidates.hpp"
 
 namespace tankfsi::sph {
 namespace {
@@ -49,14 +52,37 @@ struct Configuration {
   WallContacts walls;
 };
 
-Configuration configuration(const FluidSolver& solver, std::vector<Eigen::Vector3d> all_positions, int owned) {
+/// The neighbour lists and walls of `positions` from candidates searched elsewhere.
+Configuration configuration(const FluidSolver& solver, std::vector<Eigen::Vector3d> positions, int owned,
+                            const NeighbourCandidates& pairs, const WallCandidates& walls) {
   Configuration c;
-  c.position = std::move(all_positions);
-  CellList cells(solver.model().dimension);
-  cells.build(c.position, solver.kernel().support_radius());
-  c.neighbours = cells.neighbour_list(&solver.kernel(), owned);
-  c.walls = find_wall_contacts(solver.walls(), std::span(c.position).first(at(owned)), solver.model().dimension);
+  c.position = std::move(positions);
+  c.neighbours = pairs.within_radius(c.position, &solver.kernel());
+  c.walls = find_wall_contacts(solver.walls(), std::span(c.position).first(at(owned)), solver.model().dimension, &walls);
   return c;
+}
+
+/// The configuration of `positions` by a search of their own.
+Configuration configuration(const FluidSolver& solver, std::vector<Eigen::Vector3d> positions, int owned) {
+  const NeighbourCandidates pairs(solver.model().dimension, positions, solver.kernel().support_radius(), 0.0, owned);
+  const WallCandidates walls = find_wall_candidates(solver.walls(), std::span(positions).first(at(owned)), 0.0);
+  return configuration(solver, std::move(positions), owned, pairs, walls);
+}
+
+/// The configurations at x^n and at x~ (owned then ghosts in both) from one search
+/// at x^n: every point moves by at most d between them, so pairs within the support
+/// at x~ lie within support + 2 d at x^n, and walls within the cutoff + d.
+std::pair<Configuration, Configuration> configurations_of_step(const FluidSolver& solver,
+                                                               std::vector<Eigen::Vector3d> now,
+                                                               std::vector<Eigen::Vector3d> next, int owned) {
+  double largest_move = 0.0;
+  for (std::size_t i = 0; i < now.size(); ++i) largest_move = std::max(largest_move, (next[i] - now[i]).norm());
+  // A little more than the move: the candidates' check rounds against the skin.
+  const double move = largest_move * (1.0 + 1e-9) + 1e-12 * solver.model().spacing;
+  const NeighbourCandidates pairs(solver.model().dimension, now, solver.kernel().support_radius(), 2.0 * move, owned);
+  const WallCandidates walls = find_wall_candidates(solver.walls(), std::span(now).first(at(owned)), move);
+  return {configuration(solver, std::move(now), owned, pairs, walls),
+          configuration(solver, std::move(next), owned, pairs, walls)};
 }
 
 /// True for a free-surface particle and for one with a free-surface neighbour.
@@ -359,13 +385,16 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   // 1. Predictor at x^n; the PPE's positions x~ = x^n + dt v^n (fluid_solver.hpp).
   std::vector<Eigen::Vector3d> x_star(at(owned));
   std::vector<Eigen::Vector3d> v_star(at(owned));
+  for (int i = 0; i < owned; ++i) x_star[at(i)] = particles_.position[at(i)] + dt * velocity_n[at(i)];
   std::vector<double> density_now;  // kernel sums at x^n
+  Configuration now;
+  Configuration next;
   {
-    Configuration now;
-    {
-      auto scope = stage("neighbours");
-      now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
-    }
+    auto scope = stage("neighbours");
+    std::tie(now, next) = configurations_of_step(*this, with_ghosts(halo_, particles_.position),
+                                                 with_ghosts(halo_, x_star), owned);
+  }
+  {
     auto scope = stage("predictor");
     const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
     const auto density = with_ghosts(halo_, kernel_density(n, mass));
@@ -374,16 +403,10 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     for (int i = 0; i < owned; ++i) {
       v_star[at(i)] = velocity_n[at(i)] + dt * (viscous[at(i)] + body_force);
       if (model_.dimension == 2) v_star[at(i)].z() = 0.0;
-      x_star[at(i)] = particles_.position[at(i)] + dt * velocity_n[at(i)];
     }
   }
 
   // 2. Pressure Poisson equation at x~.
-  Configuration next;
-  {
-    auto scope = stage("neighbours");
-    next = configuration(*this, with_ghosts(halo_, x_star), owned);
-  }
   Neighbourhood n{kernel_, model_, next.position, next.neighbours, next.walls, walls_.mesh(), owned};
   std::vector<double> density;
   std::vector<unsigned char> free_surface;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "sph_solver/walls/closest_point.hpp"
@@ -78,9 +79,49 @@ void WallModel::update_curvature() {
   corner_values_.update(*mesh_, curvature_, same_wall_cosine);
 }
 
-WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension) {
+WallCandidates find_wall_candidates(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
+                                    double skin) {
+  if (!(std::isfinite(skin) && skin >= 0.0))
+    throw std::invalid_argument("find_wall_candidates: the skin must be finite and at least 0");
+  WallCandidates result;
+  result.searched.assign(positions.begin(), positions.end());
+  result.skin = skin;
+  result.wall_version = walls.mesh().geometry_version();
+  result.offsets.reserve(positions.size() + 1);
+  for (const Eigen::Vector3d& x : positions) {
+    walls.index().within(x, walls.table().cutoff() + skin,
+                         [&result](const WallHit& hit) { result.triangles.push_back(hit.triangle); });
+    result.offsets.push_back(static_cast<int>(result.triangles.size()));
+  }
+  return result;
+}
+
+namespace {
+
+/// Throws unless `candidates` may stand for a search at `positions`.
+void require_usable(const WallCandidates& candidates, const WallModel& walls,
+                    std::span<const Eigen::Vector3d> positions) {
+  if (candidates.searched.size() != positions.size())
+    throw std::invalid_argument("find_wall_contacts: candidates of " + std::to_string(candidates.searched.size()) +
+                                " points for " + std::to_string(positions.size()));
+  if (candidates.wall_version != walls.mesh().geometry_version())
+    throw std::invalid_argument("find_wall_contacts: the wall moved since its candidates were found");
+  const double largest_move_squared = candidates.skin * candidates.skin;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (!((positions[i] - candidates.searched[i]).squaredNorm() <= largest_move_squared) &&
+        positions[i] != candidates.searched[i])
+      throw std::invalid_argument("find_wall_contacts: point " + std::to_string(i) +
+                                  " moved farther than its wall candidates' skin");
+}
+
+}  // namespace
+
+WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension,
+                                const WallCandidates* candidates) {
+  if (candidates != nullptr) require_usable(*candidates, walls, positions);
   const TriangleMesh& mesh = walls.mesh();
   const double cutoff = walls.table().cutoff();
+  const double cutoff_squared = cutoff * cutoff;
   const double crossing_tolerance = 0.5 * walls.table().spacing();
   const double beside_tolerance = 1e-9 * walls.table().spacing();  // round-off of a foot point
   WallContacts result;
@@ -88,9 +129,19 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   result.overlap_offsets.reserve(positions.size() + 1);
   std::vector<WallHit> hits;
   std::vector<std::pair<Eigen::Vector3d, double>> planes;
-  for (const Eigen::Vector3d& x : positions) {
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const Eigen::Vector3d& x = positions[i];
     hits.clear();
-    walls.index().within(x, cutoff, [&hits](const WallHit& hit) { hits.push_back(hit); });
+    if (candidates == nullptr) {
+      walls.index().within(x, cutoff, [&hits](const WallHit& hit) { hits.push_back(hit); });
+    } else {
+      // The index's own test (TriangleIndex::visit_within), on the candidates only.
+      for (int k = candidates->offsets[i]; k < candidates->offsets[i + 1]; ++k) {
+        const int t = candidates->triangles[static_cast<std::size_t>(k)];
+        const ClosestPoint closest = closest_point_on_triangle(x, mesh, t);
+        if (closest.squared_distance < cutoff_squared) hits.push_back(WallHit{t, closest});
+      }
+    }
     std::sort(hits.begin(), hits.end(), [](const WallHit& a, const WallHit& b) {
       return a.closest.squared_distance < b.closest.squared_distance ||
              (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);

@@ -39,6 +39,7 @@
 // (wall_corner_values.hpp), so a cylinder's wall keeps 1/(2R) down to its foot.
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -122,9 +123,28 @@ struct WallContacts {
   }
 };
 
-/// The wall contacts of the given particles (METHOD.md eq 15 and the rules above).
+/// The triangles within the wall tables' cutoff + skin of each of a set of points,
+/// in CSR form: a step's two searches (at x^n and at x~, fluid_solver.hpp) take
+/// their contacts from these without the spatial index, as long as no point
+/// moved by more than the skin and the wall did not move.
+struct WallCandidates {
+  std::vector<int> offsets{0};
+  std::vector<int> triangles;
+  std::vector<Eigen::Vector3d> searched;  ///< the points searched
+  double skin = 0.0;
+  std::uint64_t wall_version = 0;  ///< the mesh's geometry_version() when searched
+};
+
+[[nodiscard]] WallCandidates find_wall_candidates(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
+                                                  double skin);
+
+/// The wall contacts of the given particles (METHOD.md eq 15 and the rules above);
+/// with `candidates` (of these particles, moved by at most their skin since) only
+/// their triangles are tested: the same contacts as a search of the index, which
+/// finds the triangles within the cutoff, sorted the same way. Throws
+/// std::invalid_argument for candidates of other points or of a moved wall.
 [[nodiscard]] WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
-                                              int dimension);
+                                              int dimension, const WallCandidates* candidates = nullptr);
 
 /// A per-vertex wall field (velocity, ...) at a contact's closest point:
 /// barycentric interpolation over its triangle.

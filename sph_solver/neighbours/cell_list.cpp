@@ -146,12 +146,7 @@ NeighbourList CellList::neighbour_list(const Kernel* kernel, int rows) const {
     });
     list.offsets.push_back(static_cast<int>(list.indices.size()));
   }
-  if (kernel != nullptr) {
-    list.values.resize(list.distances.size());
-    list.slopes.resize(list.distances.size());
-    for (std::size_t k = 0; k < list.distances.size(); ++k)
-      kernel->value_and_derivative(list.distances[k], list.values[k], list.slopes[k]);
-  }
+  if (kernel != nullptr) add_kernel_values(list, *kernel);
   return list;
 }
 

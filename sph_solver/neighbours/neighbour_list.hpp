@@ -10,6 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "sph_solver/kernels/kernel.hpp"
+
 namespace tankfsi::sph {
 
 struct NeighbourList {
@@ -26,5 +28,13 @@ struct NeighbourList {
                                                                           offsets[static_cast<std::size_t>(i)]));
   }
 };
+
+/// Fills the kernel's value and slope of every entry of `list` from its distance.
+inline void add_kernel_values(NeighbourList& list, const Kernel& kernel) {
+  list.values.resize(list.distances.size());
+  list.slopes.resize(list.distances.size());
+  for (std::size_t k = 0; k < list.distances.size(); ++k)
+    kernel.value_and_derivative(list.distances[k], list.values[k], list.slopes[k]);
+}
 
 }  // namespace tankfsi::sph

@@ -1,0 +1,62 @@
+#include "sph_solver/neighbours/neighbour_candidates.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "sph_solver/neighbours/cell_list.hpp"
+
+namespace tankfsi::sph {
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+}  // namespace
+
+NeighbourCandidates::NeighbourCandidates(int dimension, std::span<const Eigen::Vector3d> points, double radius,
+                                         double skin, int rows)
+    : searched_(points.begin(), points.end()), radius_(radius), skin_(skin) {
+  if (!(std::isfinite(skin) && skin >= 0.0))
+    throw std::invalid_argument("neighbour candidates: the skin must be finite and at least 0, got " +
+                                std::to_string(skin));
+  CellList cells(dimension);
+  cells.build(points, radius + skin);
+  candidates_ = cells.neighbour_list(nullptr, rows);
+}
+
+NeighbourList NeighbourCandidates::within_radius(std::span<const Eigen::Vector3d> moved, const Kernel* kernel) const {
+  if (moved.size() != searched_.size())
+    throw std::invalid_argument("neighbour candidates: " + std::to_string(moved.size()) + " points for the " +
+                                std::to_string(searched_.size()) + " searched");
+  // A displacement of skin/2 keeps every pair (the caller's skin carries the
+  // margin for the rounding of the displacements it measured).
+  const double largest_move_squared = 0.25 * skin_ * skin_;
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    if (!((moved[i] - searched_[i]).squaredNorm() <= largest_move_squared) && moved[i] != searched_[i])
+      throw std::invalid_argument("neighbour candidates: point " + std::to_string(i) + " moved by " +
+                                  std::to_string((moved[i] - searched_[i]).norm()) + ", more than half the skin " +
+                                  std::to_string(skin_));
+  const double radius_squared = radius_ * radius_;
+  NeighbourList list;
+  const int rows = candidates_.particle_count();
+  list.offsets.reserve(at(rows) + 1);
+  list.offsets.push_back(0);
+  list.indices.reserve(candidates_.indices.size());
+  list.distances.reserve(candidates_.indices.size());
+  for (int i = 0; i < rows; ++i) {
+    const Eigen::Vector3d x_i = moved[at(i)];
+    for (int k = candidates_.offsets[at(i)]; k < candidates_.offsets[at(i) + 1]; ++k) {
+      const int j = candidates_.indices[at(k)];
+      const double r_squared = (x_i - moved[at(j)]).squaredNorm();
+      if (r_squared < radius_squared) {
+        list.indices.push_back(j);
+        list.distances.push_back(std::sqrt(r_squared));
+      }
+    }
+    list.offsets.push_back(static_cast<int>(list.indices.size()));
+  }
+  if (kernel != nullptr) add_kernel_values(list, *kernel);
+  return list;
+}
+
+}  // namespace tankfsi::sph
