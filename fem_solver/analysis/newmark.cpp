@@ -54,8 +54,9 @@ void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
   petsc_check(MatMult(k_, a_.get(), ka_.get()), "MatMult");
 }
 
-void NewmarkIntegrator::set_added_mass(Mat added_mass) {
+void NewmarkIntegrator::set_added_mass(Mat added_mass, Mat product) {
   added_mass_ = added_mass;
+  added_mass_product_ = product != nullptr ? product : added_mass;
   inertia_.reset();
   inertia_matrix_.reset();
   if (added_mass_ != nullptr) {
@@ -126,7 +127,7 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   if (added_mass_ != nullptr) {
     petsc_check(VecAXPBYPCZ(work_.get(), cm * a0, cm * a2, 0.0, u_.get(), v_.get()), "VecAXPBYPCZ");
     petsc_check(VecAXPY(work_.get(), cm * a3 - am, a_.get()), "VecAXPY");
-    petsc_check(MatMultAdd(added_mass_, work_.get(), rhs_.get(), rhs_.get()), "MatMultAdd");
+    petsc_check(MatMultAdd(added_mass_product_, work_.get(), rhs_.get(), rhs_.get()), "MatMultAdd");
   }
   if (k_products) {
     const PetscScalar weights[3] = {beta_r * a1 - r, beta_r * (a4 - r), beta_r * a5};
@@ -146,7 +147,7 @@ void NewmarkIntegrator::step(double dt, Vec load) {
     const double inertia = cm * a0 + a1 * alpha;
     petsc_check(VecPointwiseMult(work_.get(), m_, u_new_.get()), "VecPointwiseMult");
     if (added_mass_ != nullptr) {
-      petsc_check(MatMult(added_mass_, u_new_.get(), work2_.get()), "MatMult");
+      petsc_check(MatMult(added_mass_product_, u_new_.get(), work2_.get()), "MatMult");
       petsc_check(VecAXPY(work_.get(), cm * a0 / inertia, work2_.get()), "VecAXPY");
     }
     petsc_check(VecAXPBY(work_.get(), 1.0 / (1.0 + a1 * beta_r), -inertia / (1.0 + a1 * beta_r), rhs_.get()),

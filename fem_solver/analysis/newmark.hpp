@@ -73,7 +73,9 @@ class NewmarkIntegrator {
   void initialise(Vec displacement, Vec velocity, Vec load);
   /// Adds M_a (same layout as K; nullptr: none) to the inertia from the next
   /// step on; K_eff is factorised again. The matrix is kept by reference.
-  void set_added_mass(Mat added_mass);
+  /// `product` (nullptr: M_a itself) stands for M_a in the steps' products with
+  /// it: the same operator in a cheaper form (normal_added_mass.hpp).
+  void set_added_mass(Mat added_mass, Mat product = nullptr);
   /// Assembles and factorises K_eff for steps of dt now (step() does it on
   /// the first step of a new dt otherwise).
   void prepare(double dt);
@@ -103,6 +105,7 @@ class NewmarkIntegrator {
   Mat k_;
   Vec m_;
   Mat added_mass_ = nullptr;              ///< M_a, or none
+  Mat added_mass_product_ = nullptr;      ///< M_a for products (set_added_mass)
   std::unique_ptr<LinearSolve> inertia_;  ///< (M + M_a)^-1, with an added mass
   RayleighCoefficients damping_;
   TimeIntegrationRule rule_;

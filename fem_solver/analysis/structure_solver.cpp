@@ -1,5 +1,7 @@
 #include "fem_solver/analysis/structure_solver.hpp"
 
+#include "fem_solver/analysis/normal_added_mass.hpp"
+
 #include "fem_solver/analysis/optional_stage.hpp"
 
 #include <stdexcept>
@@ -131,7 +133,46 @@ void StructureSolver::set_interface_added_mass(std::span<const double> matrix, s
   }
   petsc_check(MatAssemblyBegin(added_mass_.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(added_mass_.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  integrator_.set_added_mass(added_mass_.get());
+  integrator_.set_added_mass(added_mass_.get(), normal_added_mass_product(matrix, normals).get());
+}
+
+const PetscMatrix& StructureSolver::normal_added_mass_product(std::span<const double> matrix,
+                                                              std::span<const double> normals) {
+  // N: row i takes vertex i's free translations onto its normal; A: the operator,
+  // rows and columns laid out as N's rows (normal_added_mass.hpp).
+  const auto n = static_cast<PetscInt>(interface_.node_ids.size());
+  Mat k = system_.stiffness();
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(k));
+  PetscInt local_columns = 0, columns = 0;
+  petsc_check(MatGetLocalSize(k, nullptr, &local_columns), "MatGetLocalSize");
+  petsc_check(MatGetSize(k, nullptr, &columns), "MatGetSize");
+  PetscMatrix normal_map;
+  petsc_check(MatCreateAIJ(comm, PETSC_DECIDE, local_columns, n, columns, 3, nullptr, 3, nullptr, normal_map.out()),
+              "MatCreateAIJ");
+  PetscInt first = 0, end = 0;
+  petsc_check(MatGetOwnershipRange(normal_map.get(), &first, &end), "MatGetOwnershipRange");
+  for (PetscInt i = first; i < end; ++i)
+    for (std::size_t a = 0; a < 3; ++a) {
+      const PetscInt column = interface_equations_[3 * static_cast<std::size_t>(i) + a];
+      if (column >= 0)
+        petsc_check(MatSetValue(normal_map.get(), i, column, normals[3 * static_cast<std::size_t>(i) + a],
+                                INSERT_VALUES),
+                    "MatSetValue");
+    }
+  petsc_check(MatAssemblyBegin(normal_map.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(normal_map.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  PetscMatrix operator_matrix;
+  petsc_check(MatCreateDense(comm, end - first, end - first, n, n, nullptr, operator_matrix.out()), "MatCreateDense");
+  std::vector<PetscInt> all_columns(static_cast<std::size_t>(n));
+  for (PetscInt j = 0; j < n; ++j) all_columns[static_cast<std::size_t>(j)] = j;
+  for (PetscInt i = first; i < end; ++i)
+    petsc_check(MatSetValues(operator_matrix.get(), 1, &i, n, all_columns.data(),
+                             matrix.data() + static_cast<std::size_t>(i) * static_cast<std::size_t>(n), INSERT_VALUES),
+                "MatSetValues");
+  petsc_check(MatAssemblyBegin(operator_matrix.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(operator_matrix.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  added_mass_product_ = make_normal_added_mass_product(normal_map.get(), operator_matrix.get());
+  return added_mass_product_;
 }
 
 void StructureSolver::balance_acceleration() {

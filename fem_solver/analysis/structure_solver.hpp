@@ -100,13 +100,16 @@ class StructureSolver {
   };
   void build_load(double t);
   void mark_state_changed();
+  /// M_a's product through its factors (normal_added_mass.hpp), kept in added_mass_product_.
+  const PetscMatrix& normal_added_mass_product(std::span<const double> matrix, std::span<const double> normals);
   const NodalValues& gathered(GatheredState& state, Vec values, double prescribed_scale) const;
   [[nodiscard]] std::vector<double> interface_values(Vec values, double prescribed_scale) const;
 
   StructureSystem& system_;
   const GroundMotion& motion_;
   NewmarkIntegrator integrator_;
-  PetscMatrix added_mass_;
+  PetscMatrix added_mass_;          ///< assembled: for K_eff's factorisation
+  PetscMatrix added_mass_product_;  ///< the same through its factors: for products (normal_added_mass.hpp)
   PetscVector constant_load_;
   PetscVector external_load_;
   PetscVector load_;
