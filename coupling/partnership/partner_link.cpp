@@ -56,29 +56,33 @@ PartnerLink::~PartnerLink() {
   if (local_ != MPI_COMM_NULL) MPI_Comm_free(&local_);
 }
 
-void PartnerLink::wait(std::vector<MPI_Request>& requests, const std::string& what) {
+void PartnerLink::wait(std::vector<MPI_Request>& requests, const std::string& what, bool collective) {
   if (requests.empty()) return;
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration<double>(timeout_);
-  // First yield the core (an oversubscribed partner gets it at once), then
-  // sleep in short naps: a partner that computes for long costs no CPU, and
-  // one that answers soon is noticed within 0.2 ms.
-  long polls = 0;
+  // First yield the core for a few tens of microseconds (a partner that answers
+  // at once is noticed at once), then sleep in short naps: a partner that
+  // computes for long costs no CPU. Yielding for longer does cost it: with more
+  // ranks than cores each yield hands the core to a computing rank and back.
+  const auto yield_until = start + std::chrono::microseconds(50);
+  const auto short_naps_until = start + std::chrono::milliseconds(5);
   int done = 0;
   for (;;) {
     MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE);
     if (done) break;
-    if (Clock::now() > deadline) {
-      for (auto& r : requests)
-        if (r != MPI_REQUEST_NULL) MPI_Cancel(&r);
+    const auto now = Clock::now();
+    if (now > deadline) {
+      if (!collective)
+        for (auto& r : requests)
+          if (r != MPI_REQUEST_NULL) MPI_Cancel(&r);
       throw CouplingError("timed out after " + format_seconds(timeout_) + " (coupling.timeout) waiting for " + what +
                           " from " + partner_name() + " (rank " + std::to_string(rank_) + " of the " +
                           side_name(side_) + " program)");
     }
-    if (++polls < 2000)
+    if (now < yield_until)
       std::this_thread::yield();
     else
-      std::this_thread::sleep_for(std::chrono::microseconds(polls < 4000 ? 20 : 200));
+      std::this_thread::sleep_for(std::chrono::microseconds(now < short_naps_until ? 20 : 200));
   }
   requests.clear();
   wait_seconds_ += std::chrono::duration<double>(Clock::now() - start).count();
@@ -131,12 +135,16 @@ void PartnerLink::send_control(const Control& control) {
 
 Control PartnerLink::receive_record(const std::string& what) {
   Control control;
+  std::vector<MPI_Request> request(1);
   if (leader()) {
-    std::vector<MPI_Request> request(1);
     MPI_Irecv(&control, sizeof(Control), MPI_BYTE, 0, tag_control, inter_, &request[0]);
     wait(request, what);
+    request.resize(1);
   }
-  MPI_Bcast(&control, sizeof(Control), MPI_BYTE, 0, local_);
+  // The other ranks wait for the leader as the leader waits for the partner (a
+  // blocking broadcast would spin on their cores meanwhile).
+  MPI_Ibcast(&control, sizeof(Control), MPI_BYTE, 0, local_, &request[0]);
+  wait(request, what, true);
   return control;
 }
 

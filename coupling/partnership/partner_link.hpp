@@ -91,9 +91,11 @@ class PartnerLink {
   void receive_finalize();
 
   /// Waits for every request, or throws CouplingError after the time-out
-  /// naming `what`. Sleeps between tests so that waiting ranks leave the cores
-  /// to the partner (oversubscribed runs).
-  void wait(std::vector<MPI_Request>& requests, const std::string& what);
+  /// naming `what` (cancelling the requests first unless they are
+  /// collective: MPI cancels point-to-point requests only). Sleeps between
+  /// tests so that waiting ranks leave the cores to the partner
+  /// (oversubscribed runs).
+  void wait(std::vector<MPI_Request>& requests, const std::string& what, bool collective = false);
 
   /// Seconds spent waiting for the partner so far (this rank).
   [[nodiscard]] double wait_seconds() const { return wait_seconds_; }
