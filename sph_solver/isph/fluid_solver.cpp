@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
+#include <optional>
 #include <utility>
 
 #include "common/geometry/segment_triangle.hpp"
@@ -69,20 +69,22 @@ Configuration configuration(const FluidSolver& solver, std::vector<Eigen::Vector
   return configuration(solver, std::move(positions), owned, pairs, walls);
 }
 
-/// The configurations at x^n and at x~ (owned then ghosts in both) from one search
-/// at x^n: every point moves by at most d between them, so pairs within the support
-/// at x~ lie within support + 2 d at x^n, and walls within the cutoff + d.
-std::pair<Configuration, Configuration> configurations_of_step(const FluidSolver& solver,
-                                                               std::vector<Eigen::Vector3d> now,
-                                                               std::vector<Eigen::Vector3d> next, int owned) {
+/// One search for a step's two configurations, at x^n and at x~ (owned then ghosts
+/// in both): every point moves by at most d between them, so pairs within the
+/// support at x~ lie within support + 2 d at x^n, and walls within the cutoff + d.
+struct StepSearch {
+  NeighbourCandidates pairs;
+  WallCandidates walls;
+};
+
+StepSearch search_of_step(const FluidSolver& solver, std::span<const Eigen::Vector3d> now,
+                          std::span<const Eigen::Vector3d> next, int owned) {
   double largest_move = 0.0;
   for (std::size_t i = 0; i < now.size(); ++i) largest_move = std::max(largest_move, (next[i] - now[i]).norm());
   // A little more than the move: the candidates' check rounds against the skin.
   const double move = largest_move * (1.0 + 1e-9) + 1e-12 * solver.model().spacing;
-  const NeighbourCandidates pairs(solver.model().dimension, now, solver.kernel().support_radius(), 2.0 * move, owned);
-  const WallCandidates walls = find_wall_candidates(solver.walls(), std::span(now).first(at(owned)), move);
-  return {configuration(solver, std::move(now), owned, pairs, walls),
-          configuration(solver, std::move(next), owned, pairs, walls)};
+  return {NeighbourCandidates(solver.model().dimension, now, solver.kernel().support_radius(), 2.0 * move, owned),
+          find_wall_candidates(solver.walls(), now.first(at(owned)), move)};
 }
 
 /// True for a free-surface particle and for one with a free-surface neighbour.
@@ -387,12 +389,15 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   std::vector<Eigen::Vector3d> v_star(at(owned));
   for (int i = 0; i < owned; ++i) x_star[at(i)] = particles_.position[at(i)] + dt * velocity_n[at(i)];
   std::vector<double> density_now;  // kernel sums at x^n
+  std::vector<Eigen::Vector3d> x_star_all;  // owned and ghosts
+  std::optional<StepSearch> search;         // for both configurations, at x^n and at x~
   Configuration now;
-  Configuration next;
   {
     auto scope = stage("neighbours");
-    std::tie(now, next) = configurations_of_step(*this, with_ghosts(halo_, particles_.position),
-                                                 with_ghosts(halo_, x_star), owned);
+    auto x_now_all = with_ghosts(halo_, particles_.position);
+    x_star_all = with_ghosts(halo_, x_star);
+    search.emplace(search_of_step(*this, x_now_all, x_star_all, owned));
+    now = configuration(*this, std::move(x_now_all), owned, search->pairs, search->walls);
   }
   {
     auto scope = stage("predictor");
@@ -407,6 +412,12 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   }
 
   // 2. Pressure Poisson equation at x~.
+  Configuration next;
+  {
+    auto scope = stage("neighbours");
+    next = configuration(*this, std::move(x_star_all), owned, search->pairs, search->walls);
+    search.reset();
+  }
   Neighbourhood n{kernel_, model_, next.position, next.neighbours, next.walls, walls_.mesh(), owned};
   std::vector<double> density;
   std::vector<unsigned char> free_surface;
