@@ -2,10 +2,28 @@
 
 #include <petscsys.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 
 namespace tankfsi {
+
+namespace {
+
+// Open MPI's MPI-IO (ompio) opens a shared-file-pointer component with every
+// file, though no writer here uses shared file pointers. Its default, "sm",
+// guards the pointer with a POSIX semaphore named after the file's base name
+// alone (/dev/shm/sem.OMPIO_<name>): a job killed while it holds one leaves
+// the semaphore taken, and every later job on the node that opens a file of
+// that name (the next run's checkpoint 2, say) waits in MPI_File_open
+// forever; two jobs writing files of the same name at once share it.
+// "lockedfile" leaves lock files beside the output when killed. Neither is
+// needed, so neither is opened, unless the user set the parameter.
+void keep_mpi_io_off_shared_file_pointers() {
+  setenv("OMPI_MCA_sharedfp", "^sm,lockedfile", /*overwrite=*/0);
+}
+
+}  // namespace
 
 MpiSession::MpiSession(const std::vector<std::string>& petsc_arguments, const std::string& role) {
   // PetscInitialize wants a mutable argv that outlives the call.
@@ -19,6 +37,7 @@ MpiSession::MpiSession(const std::vector<std::string>& petsc_arguments, const st
   int argc = static_cast<int>(storage.size());
   char** argv_pointer = argv.data();
 
+  keep_mpi_io_off_shared_file_pointers();
   MPI_Init(&argc, &argv_pointer);
   MPI_Comm_size(MPI_COMM_WORLD, &job_size_);
   if (role.empty()) {
