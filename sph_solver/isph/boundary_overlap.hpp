@@ -12,10 +12,18 @@
 //
 // Pairs count as orthogonal when |n_A . n_B| < 0.25 (75.5 to 104.5 degrees); the
 // planes' normals are used as they are. Other pairs are not corrected (a known
-// limitation: the dome roof's junction with the wall of a 3D tank), nor are the
-// triple overlaps at the corners of a 3D box.
+// limitation: the dome roof's junction with the wall of a 3D tank).
+//
+// CornerOctant: where three mutually orthogonal walls meet (a corner of a 3D box)
+// the three half-spaces count the octant behind all three three times and the
+// three pairs' overlaps take it out three times: it is added back once, with the
+// pressure P_k = P_i + G . (x_k - x_i), G = G_A n_A + G_B n_B + G_C n_C. (A corner
+// of two walls and the free surface is not corrected: the air's overlap with two
+// walls is counted as the pairs leave it.)
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+
+#include <array>
 
 #include "sph_solver/walls/corner_kernel_table.hpp"
 
@@ -57,6 +65,41 @@ struct BoundaryOverlap {
 
   /// The trace of the overlap's moment tensor: its share of div r.
   [[nodiscard]] double position_divergence_share() const { return -(values.saa + values.sbb + values.see); }
+};
+
+struct CornerOctant {
+  std::array<int, 3> contacts{-1, -1, -1};  ///< indices among the particle's wall contacts
+  std::array<Eigen::Vector3d, 3> normals{};  ///< unit, into the fluid
+  OctantKernelValues values;
+
+  /// V sum grad_i W_ik over the octant.
+  [[nodiscard]] Eigen::Vector3d gradient_sum() const {
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (std::size_t u = 0; u < 3; ++u) g += values.q1[u] * normals[u];
+    return g;
+  }
+
+  /// S = V sum W'/r x_ik (x) x_ik (the moment tensor of the octant is -S).
+  [[nodiscard]] Eigen::Matrix3d second_moment() const {
+    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
+    for (std::size_t u = 0; u < 3; ++u)
+      for (std::size_t v = 0; v < 3; ++v) s += values.s[u][v] * normals[u] * normals[v].transpose();
+    return s;
+  }
+
+  /// V sum (P_k - P_i) grad_i W_ik for the linear field of gradient G: -S G.
+  [[nodiscard]] Eigen::Vector3d pressure_difference_sum(const Eigen::Vector3d& gradient) const {
+    return -(second_moment() * gradient);
+  }
+
+  /// sum a_ik (P_i - P_k) = 2 sum_X M2X G_X for normal gradients G_X.
+  [[nodiscard]] double laplacian_sum(const std::array<double, 3>& normal_gradients) const {
+    return 2.0 * (values.m2[0] * normal_gradients[0] + values.m2[1] * normal_gradients[1] +
+                  values.m2[2] * normal_gradients[2]);
+  }
+
+  /// The trace of the octant's moment tensor: its share of div r.
+  [[nodiscard]] double position_divergence_share() const { return -(values.s[0][0] + values.s[1][1] + values.s[2][2]); }
 };
 
 }  // namespace tankfsi::sph

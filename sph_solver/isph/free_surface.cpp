@@ -21,16 +21,29 @@ struct SurfacePlane {
   int count = 0;
 };
 
-/// delta with Z0(delta) - sum_walls Q0(d_w, delta) = deficit (both sides fall with
-/// delta), by bisection; 0 if the deficit exceeds the left side at the plane.
+/// Whether walls k and l of the plane are square to each other (a vertical edge of
+/// a box: the octant behind both and the air).
+bool orthogonal_walls(std::span<const WallContact> contacts, const SurfacePlane& plane, int k, int l) {
+  return std::abs(contacts[at(plane.walls[at(k)])].normal.dot(contacts[at(plane.walls[at(l)])].normal)) <
+         BoundaryOverlap::orthogonal_cosine;
+}
+
+/// delta with Z0(delta) - sum_walls Q0(d_w, delta) + sum_pairs O0(d_w, d_v, delta) =
+/// deficit — the air not already counted by the walls, by inclusion-exclusion (both
+/// sides fall with delta) — by bisection; 0 if the deficit exceeds the left side at
+/// the plane.
 double distance_with_overlaps(const WallModel& walls, std::span<const WallContact> contacts,
                               const SurfacePlane& plane, double deficit) {
   const WallKernelTable& table = walls.table();
   if (plane.count == 0) return table.distance_for_share(deficit);
+  const auto distance = [&](int k) { return contacts[at(plane.walls[at(k)])].distance; };
   const auto share = [&](double delta) {
     double s = table.at(delta).z0;
-    for (int k = 0; k < plane.count; ++k)
-      s -= walls.corner_table().at(contacts[at(plane.walls[static_cast<std::size_t>(k)])].distance, delta).q0;
+    for (int k = 0; k < plane.count; ++k) {
+      s -= walls.corner_table().at(distance(k), delta).q0;
+      for (int l = k + 1; l < plane.count; ++l)
+        if (orthogonal_walls(contacts, plane, k, l)) s += walls.corner_table().octant(distance(k), distance(l), delta).q0;
+    }
     return s;
   };
   double low = 0.0;
@@ -138,6 +151,18 @@ std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<c
       o.values = walls.corner_table().at(w.distance, c.distance);
       if (o.values.q0 > 0.0 || o.values.q2 < 0.0) ++c.overlap_count;
     }
+    if (n.model.dimension == 3)
+      for (int k = 0; k < met.count; ++k)
+        for (int l = k + 1; l < met.count; ++l) {
+          if (!orthogonal_walls(walls_of_i, met, k, l)) continue;
+          const WallContact& a = walls_of_i[at(met.walls[at(k)])];
+          const WallContact& b = walls_of_i[at(met.walls[at(l)])];
+          CornerOctant& o = c.octant_storage[at(c.octant_count)];
+          o.contacts = {met.walls[at(k)], met.walls[at(l)], -1};
+          o.normals = {a.normal, b.normal, c.normal};
+          o.values = walls.corner_table().octant(a.distance, b.distance, c.distance);
+          if (o.values.q0 > 0.0 || o.values.q2 < 0.0) ++c.octant_count;
+        }
     contacts[at(i)] = c;
   }
   return contacts;

@@ -29,6 +29,15 @@ struct SurfaceContact {
   [[nodiscard]] std::span<const BoundaryOverlap> overlaps() const {
     return std::span<const BoundaryOverlap>(overlap_storage).first(static_cast<std::size_t>(overlap_count));
   }
+  /// Octants behind two orthogonal walls and the air (a vertical edge of a box at
+  /// the surface): contacts {wall, wall, -1}, normals {wall, wall, air}. The walls,
+  /// their pair's overlap and the air's two overlaps leave it counted once as wall
+  /// and not as air: one wall copy is taken off again (see particle_terms.cpp).
+  std::array<CornerOctant, max_overlaps> octant_storage{};
+  int octant_count = 0;
+  [[nodiscard]] std::span<const CornerOctant> octants() const {
+    return std::span<const CornerOctant>(octant_storage).first(static_cast<std::size_t>(octant_count));
+  }
 
   /// The air's share of the Laplacian row (eq 6) that multiplies P_i:
   /// sum_{air - overlaps} a_ik (P_i - P_air,k) = laplacian_share() P_i + (the overlaps'
@@ -37,6 +46,7 @@ struct SurfaceContact {
     if (!active) return 0.0;
     double share = 2.0 * values.z2 * (1.0 + values.depth2 / distance);
     for (const BoundaryOverlap& o : overlaps()) share -= o.laplacian_sum(0.0, 1.0 / distance);
+    for (const CornerOctant& o : octants()) share += o.laplacian_sum({0.0, 0.0, 1.0 / distance});
     return share;
   }
   /// P_i + P_air(d1) = pressure_sum_factor() P_i (the pair sum of eq 4 with the air).

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "sph_solver/neighbours/neighbour_candidates.hpp"
 #include "sph_solver/walls/closest_point.hpp"
 #include "sph_solver/walls/mean_curvature.hpp"
 
@@ -101,17 +102,9 @@ namespace {
 /// Throws unless `candidates` may stand for a search at `positions`.
 void require_usable(const WallCandidates& candidates, const WallModel& walls,
                     std::span<const Eigen::Vector3d> positions) {
-  if (candidates.searched.size() != positions.size())
-    throw std::invalid_argument("find_wall_contacts: candidates of " + std::to_string(candidates.searched.size()) +
-                                " points for " + std::to_string(positions.size()));
   if (candidates.wall_version != walls.mesh().geometry_version())
     throw std::invalid_argument("find_wall_contacts: the wall moved since its candidates were found");
-  const double largest_move_squared = candidates.skin * candidates.skin;
-  for (std::size_t i = 0; i < positions.size(); ++i)
-    if (!((positions[i] - candidates.searched[i]).squaredNorm() <= largest_move_squared) &&
-        positions[i] != candidates.searched[i])
-      throw std::invalid_argument("find_wall_contacts: point " + std::to_string(i) +
-                                  " moved farther than its wall candidates' skin");
+  require_moved_within(candidates.searched, positions, candidates.skin, "find_wall_contacts");
 }
 
 }  // namespace
@@ -127,6 +120,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   WallContacts result;
   result.offsets.reserve(positions.size() + 1);
   result.overlap_offsets.reserve(positions.size() + 1);
+  result.octant_offsets.reserve(positions.size() + 1);
   std::vector<WallHit> hits;
   std::vector<std::pair<Eigen::Vector3d, double>> planes;
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -193,9 +187,12 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
     result.offsets.push_back(static_cast<int>(result.contacts.size()));
     // Corners: orthogonal pairs of the particle's walls overlap behind both.
     const auto contacts = std::span<const WallContact>(result.contacts).subspan(first_contact);
+    const auto orthogonal = [&contacts](std::size_t k, std::size_t l) {
+      return std::abs(contacts[k].normal.dot(contacts[l].normal)) < BoundaryOverlap::orthogonal_cosine;
+    };
     for (std::size_t k = 0; k < contacts.size(); ++k)
       for (std::size_t l = k + 1; l < contacts.size(); ++l) {
-        if (!(std::abs(contacts[k].normal.dot(contacts[l].normal)) < BoundaryOverlap::orthogonal_cosine)) continue;
+        if (!orthogonal(k, l)) continue;
         BoundaryOverlap overlap;
         overlap.first = static_cast<int>(k);
         overlap.second = static_cast<int>(l);
@@ -205,6 +202,19 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
         if (overlap.values.q0 > 0.0 || overlap.values.q2 < 0.0) result.overlaps.push_back(overlap);
       }
     result.overlap_offsets.push_back(static_cast<int>(result.overlaps.size()));
+    // Corners of three walls: the octant behind all three, once back in.
+    if (dimension == 3)
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        for (std::size_t l = k + 1; l < contacts.size(); ++l)
+          for (std::size_t m = l + 1; m < contacts.size(); ++m) {
+            if (!(orthogonal(k, l) && orthogonal(k, m) && orthogonal(l, m))) continue;
+            CornerOctant octant;
+            octant.contacts = {static_cast<int>(k), static_cast<int>(l), static_cast<int>(m)};
+            octant.normals = {contacts[k].normal, contacts[l].normal, contacts[m].normal};
+            octant.values = walls.corner_table().octant(contacts[k].distance, contacts[l].distance, contacts[m].distance);
+            if (octant.values.q0 > 0.0 || octant.values.q2 < 0.0) result.octants.push_back(octant);
+          }
+    result.octant_offsets.push_back(static_cast<int>(result.octants.size()));
   }
   return result;
 }

@@ -12,7 +12,9 @@
 // behind (the far side of a thin plate) is not a contact. The half-spaces of two
 // walls meeting at a corner overlap behind the corner; for orthogonal walls the
 // overlap is taken out once with the corner kernel table (boundary_overlap.hpp), so
-// every virtual particle counts once; overlaps of walls at other angles are not.
+// every virtual particle counts once, and where three orthogonal walls meet the
+// octant behind all three is added back once; overlaps of walls at other angles
+// are not corrected.
 //
 // Distance (eq 15): the true point-triangle distance to the nearest triangle of the
 // wall; the normal that of the smooth wall the facets approximate, interpolated at
@@ -101,19 +103,25 @@ struct WallContact {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();     ///< wall velocity at the closest point
 };
 
-/// The contacts of particles 0 .. n-1, and the overlaps of orthogonal pairs of them
-/// (corners: first and second index the particle's own contacts), in CSR form.
+/// The contacts of particles 0 .. n-1, the overlaps of orthogonal pairs of them
+/// (corners: first and second index the particle's own contacts) and the octants
+/// of orthogonal triples (a box's corners), in CSR form.
 struct WallContacts {
   std::vector<int> offsets{0};
   std::vector<WallContact> contacts;
   std::vector<int> overlap_offsets{0};
   std::vector<BoundaryOverlap> overlaps;
+  std::vector<int> octant_offsets{0};
+  std::vector<CornerOctant> octants;
 
   [[nodiscard]] std::span<const WallContact> of(int i) const {
     return std::span<const WallContact>(contacts).subspan(begin(offsets, i), count(offsets, i));
   }
   [[nodiscard]] std::span<const BoundaryOverlap> overlaps_of(int i) const {
     return std::span<const BoundaryOverlap>(overlaps).subspan(begin(overlap_offsets, i), count(overlap_offsets, i));
+  }
+  [[nodiscard]] std::span<const CornerOctant> octants_of(int i) const {
+    return std::span<const CornerOctant>(octants).subspan(begin(octant_offsets, i), count(octant_offsets, i));
   }
 
  private:

@@ -24,18 +24,23 @@ NeighbourCandidates::NeighbourCandidates(int dimension, std::span<const Eigen::V
   candidates_ = cells.neighbour_list(nullptr, rows);
 }
 
+void require_moved_within(std::span<const Eigen::Vector3d> searched, std::span<const Eigen::Vector3d> moved,
+                          double largest_move, const std::string& what) {
+  if (moved.size() != searched.size())
+    throw std::invalid_argument(what + ": " + std::to_string(moved.size()) + " points for the " +
+                                std::to_string(searched.size()) + " searched");
+  const double largest_move_squared = largest_move * largest_move;
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    if (!((moved[i] - searched[i]).squaredNorm() <= largest_move_squared) && moved[i] != searched[i])
+      throw std::invalid_argument(what + ": point " + std::to_string(i) + " moved by " +
+                                  std::to_string((moved[i] - searched[i]).norm()) + ", more than " +
+                                  std::to_string(largest_move) + " allowed");
+}
+
 NeighbourList NeighbourCandidates::within_radius(std::span<const Eigen::Vector3d> moved, const Kernel* kernel) const {
-  if (moved.size() != searched_.size())
-    throw std::invalid_argument("neighbour candidates: " + std::to_string(moved.size()) + " points for the " +
-                                std::to_string(searched_.size()) + " searched");
   // A displacement of skin/2 keeps every pair (the caller's skin carries the
   // margin for the rounding of the displacements it measured).
-  const double largest_move_squared = 0.25 * skin_ * skin_;
-  for (std::size_t i = 0; i < moved.size(); ++i)
-    if (!((moved[i] - searched_[i]).squaredNorm() <= largest_move_squared) && moved[i] != searched_[i])
-      throw std::invalid_argument("neighbour candidates: point " + std::to_string(i) + " moved by " +
-                                  std::to_string((moved[i] - searched_[i]).norm()) + ", more than half the skin " +
-                                  std::to_string(skin_));
+  require_moved_within(searched_, moved, 0.5 * skin_, "neighbour candidates");
   const double radius_squared = radius_ * radius_;
   NeighbourList list;
   const int rows = candidates_.particle_count();

@@ -13,12 +13,20 @@
 #include <Eigen/Core>
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/neighbours/neighbour_list.hpp"
 
 namespace tankfsi::sph {
+
+/// Throws std::invalid_argument, naming `what` (the caller) and the first point at
+/// fault, unless `moved` has the points of `searched`, each moved by at most
+/// `largest_move` (a non-finite point that stayed as it was passes): the test of
+/// every search that lets moved points use candidates found before they moved.
+void require_moved_within(std::span<const Eigen::Vector3d> searched, std::span<const Eigen::Vector3d> moved,
+                          double largest_move, const std::string& what);
 
 class NeighbourCandidates {
  public:

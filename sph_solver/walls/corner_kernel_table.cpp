@@ -25,7 +25,7 @@ void add_scaled(CornerKernelValues& sum, const CornerKernelValues& term, double 
 }  // namespace
 
 CornerKernelTable::CornerKernelTable(const Kernel& kernel, double spacing, int intervals)
-    : cutoff_(kernel.support_radius()), intervals_(intervals) {
+    : kernel_(kernel), spacing_(spacing), cutoff_(kernel.support_radius()), intervals_(intervals) {
   require_table_spacing(kernel, spacing);
   if (intervals < 1) throw std::invalid_argument("corner kernel table: at least one interval is needed");
   inverse_step_ = intervals / cutoff_;
@@ -58,6 +58,41 @@ CornerKernelValues CornerKernelTable::at(double a, double b) const {
   add_scaled(v, node(i, j + 1), (1.0 - tu) * tw);
   add_scaled(v, node(i + 1, j + 1), tu * tw);
   return v;
+}
+
+OctantKernelValues CornerKernelTable::octant(double a, double b, double c) const {
+  const double support_squared = cutoff_ * cutoff_;
+  const double h = kernel_.smoothing_length();
+  const double eta_squared = 0.01 * h * h;
+  const std::array<double, 3> distance{std::max(a, 0.0), std::max(b, 0.0), std::max(c, 0.0)};
+  OctantKernelValues sum;
+  const double volume = spacing_ * spacing_ * spacing_;
+  std::array<double, 3> x{};
+  for (int la = 0;; ++la) {
+    x[0] = distance[0] + (la + 0.5) * spacing_;
+    if (x[0] * x[0] >= support_squared) break;
+    for (int lb = 0;; ++lb) {
+      x[1] = distance[1] + (lb + 0.5) * spacing_;
+      if (x[0] * x[0] + x[1] * x[1] >= support_squared) break;
+      for (int lc = 0;; ++lc) {
+        x[2] = distance[2] + (lc + 0.5) * spacing_;
+        const double r_squared = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        if (r_squared >= support_squared) break;
+        const double r = std::sqrt(r_squared);  // > 0: every x_X >= L0/2
+        const double slope = kernel_.derivative(r);
+        const double per_r = volume * slope / r;
+        const double laplacian = volume * r * slope / (r_squared + eta_squared);
+        sum.q0 += volume * kernel_.value(r);
+        sum.q2 += laplacian;
+        for (std::size_t u = 0; u < 3; ++u) {
+          sum.q1[u] += per_r * x[u];
+          sum.m2[u] += laplacian * x[u];
+          for (std::size_t v = 0; v < 3; ++v) sum.s[u][v] += per_r * x[u] * x[v];
+        }
+      }
+    }
+  }
+  return sum;
 }
 
 CornerKernelValues CornerKernelTable::direct_sum(const Kernel& kernel, double spacing, double a, double b) {

@@ -46,6 +46,18 @@ struct CornerKernelValues {
   double m2a = 0, m2b = 0;
 };
 
+/// The same sums over the octant behind three orthogonal planes A, B, C (a corner
+/// of a 3D box): sites x_k = -s_A n_A - s_B n_B - s_C n_C, the particle at
+/// x_i = a n_A + b n_B + c n_C, components x_X = d_X + s_X in the planes' basis.
+/// The three half-spaces count the octant three times and the three pairs'
+/// overlaps take it out three times: inclusion-exclusion adds it back once.
+struct OctantKernelValues {
+  double q0 = 0, q2 = 0;
+  std::array<double, 3> q1{};                ///< V sum W'/r x_X
+  std::array<double, 3> m2{};                ///< V sum r W'/(r^2 + eta^2) x_X
+  std::array<std::array<double, 3>, 3> s{};  ///< V sum W'/r x_X x_Y
+};
+
 class CornerKernelTable {
  public:
   /// 160 intervals per axis: bilinear interpolation errs like the wall tables' linear
@@ -64,12 +76,19 @@ class CornerKernelTable {
   /// The exact lattice sums at a, b >= 0: the table's nodes and the tests' reference.
   [[nodiscard]] static CornerKernelValues direct_sum(const Kernel& kernel, double spacing, double a, double b);
 
+  /// The octant behind three planes at distances a, b, c >= 0 (3D), summed
+  /// directly: it holds a few dozen sites at most, and only particles within the
+  /// support of a box's corner need it — no table.
+  [[nodiscard]] OctantKernelValues octant(double a, double b, double c) const;
+
   [[nodiscard]] double cutoff() const { return cutoff_; }
   [[nodiscard]] int intervals() const { return intervals_; }
 
  private:
   static CornerKernelValues sum_lattice(const Kernel& kernel, double spacing, double a, double b);
 
+  Kernel kernel_;
+  double spacing_;
   double cutoff_;
   int intervals_;
   double inverse_step_;

@@ -16,9 +16,10 @@
 // Corner normal of triangle t at vertex v: the angle-weighted mean of the normals of
 // the triangles around v on t's wall (Thuermer & Wuethrich 1998), exactly t's own
 // normal where they agree to round-off (a flat wall stays exactly flat). Corner
-// curvature: the vertex's mean curvature where the kernel resolves it, else (a
-// vertex on a sharp edge) the mean of the resolvable curvatures of its neighbours on
-// t's wall, else 0.
+// curvature: the vertex's mean curvature where the kernel resolves it and all
+// triangles around the vertex are one wall, else (a vertex on a sharp edge, however
+// large its triangles) the mean of such curvatures of its neighbours on t's wall,
+// else 0.
 //
 // The triangles around each vertex are found once per mesh; update() follows a
 // moving wall (same topology) every step without allocating.
@@ -58,6 +59,7 @@ class WallCornerValues {
   std::vector<std::array<int, 2>> around_;        ///< (triangle, its corner index at the vertex)
   std::vector<std::array<Eigen::Vector3d, 3>> normals_;
   std::vector<std::array<double, 3>> curvature_;
+  std::vector<double> wall_curvature_;  ///< per vertex: NaN where walls meet (scratch of update)
 };
 
 }  // namespace tankfsi::sph

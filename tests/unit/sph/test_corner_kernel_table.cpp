@@ -91,6 +91,73 @@ TEST_CASE("corner table: fluid + two walls - overlap = the full lattice", "[corn
   }
 }
 
+TEST_CASE("octant: fluid + three walls - three overlaps + octant = the full lattice", "[corner_table]") {
+  // A particle of the octant lattice x, y, z > 0 near the corner of three walls
+  // (x = 0, y = 0, z = 0; a box's corner): its fluid neighbours, the three walls'
+  // half-space sums, the three pairs' overlaps taken out and the octant put back
+  // must count every site of the full lattice once: density, gradient (zero on the
+  // full lattice), Laplacian weight and the trace of the moment tensor (div r).
+  // Direct sums throughout: round-off (1e-12 of the scale).
+  for (const Setting& s : settings()) {
+    if (s.dimension != 3) continue;
+    const Kernel kernel(s.type, s.dimension, s.h_over_dx * spacing);
+    const CornerKernelTable corner(kernel, spacing);
+    INFO(kernel_name(s.type) << " 3D h/L0 = " << s.h_over_dx);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        for (int k = 0; k < 4; ++k) {
+          const Vector3d x_i((i + 0.5) * spacing, (j + 0.5) * spacing, (k + 0.5) * spacing);
+          double density = 0.0, laplacian = 0.0, trace = 0.0, full_density = 0.0, full_laplacian = 0.0,
+                 full_trace = 0.0, gradient_scale = 0.0;
+          Vector3d gradient = Vector3d::Zero();
+          for (const Vector3d& x_ij : neighbour_offsets(kernel)) {
+            const Vector3d x_j = x_i - x_ij;
+            full_density += volume(kernel) * kernel.value(x_ij.norm());
+            full_laplacian += volume(kernel) * laplacian_weight(kernel, x_ij);
+            gradient_scale += volume(kernel) * kernel.gradient(x_ij).norm();
+            full_trace -= volume(kernel) * x_ij.dot(kernel.gradient(x_ij));
+            if (x_j.x() < 0.0 || x_j.y() < 0.0 || x_j.z() < 0.0) continue;
+            density += volume(kernel) * kernel.value(x_ij.norm());
+            laplacian += volume(kernel) * laplacian_weight(kernel, x_ij);
+            gradient += volume(kernel) * kernel.gradient(x_ij);
+            trace -= volume(kernel) * x_ij.dot(kernel.gradient(x_ij));
+          }
+          // The walls: normals e_x, e_y, e_z at distances x_i's coordinates.
+          const std::array<Vector3d, 3> normals{Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
+          for (int w = 0; w < 3; ++w) {
+            const WallKernelValues half = WallKernelTable::direct_sum(kernel, spacing, x_i[w]);
+            density += half.z0;
+            laplacian += half.z2;
+            gradient += half.z1 * normals[static_cast<std::size_t>(w)];
+            trace += -half.z1 * (x_i[w] + half.depth1) + 2.0 * half.z3;
+            for (int v = w + 1; v < 3; ++v) {
+              // The pair (w, v): plane A = w, plane B = v.
+              const CornerKernelValues q = CornerKernelTable::direct_sum(kernel, spacing, x_i[w], x_i[v]);
+              density -= q.q0;
+              laplacian -= q.q2;
+              gradient -= q.q1a * normals[static_cast<std::size_t>(w)] + q.q1b * normals[static_cast<std::size_t>(v)];
+              trace -= -(q.saa + q.sbb + q.see);
+            }
+          }
+          const OctantKernelValues o = corner.octant(x_i.x(), x_i.y(), x_i.z());
+          density += o.q0;
+          laplacian += o.q2;
+          gradient += o.q1[0] * normals[0] + o.q1[1] * normals[1] + o.q1[2] * normals[2];
+          trace += -(o.s[0][0] + o.s[1][1] + o.s[2][2]);
+          INFO("x_i = (" << x_i.x() / spacing << ", " << x_i.y() / spacing << ", " << x_i.z() / spacing << ") L0");
+          CHECK(std::abs(density - full_density) < 1e-12 * full_density);
+          CHECK(std::abs(laplacian - full_laplacian) < 1e-12 * std::abs(full_laplacian));
+          CHECK(gradient.norm() <= 1e-12 * gradient_scale);
+          CHECK(std::abs(trace - full_trace) < 1e-12 * full_trace);
+        }
+    // The octant is not nothing where it matters: at the corner particle its
+    // density share is about 1 % of the full sum.
+    const double first = (0.5 * spacing);
+    CHECK(corner.octant(first, first, first).q0 > 0.005);
+    CHECK(corner.octant(corner.cutoff(), 0.0, 0.0).q0 == 0.0);
+  }
+}
+
 TEST_CASE("corner table: linear pressures in the overlap", "[corner_table]") {
   // The identities of the header against the overlap's sites summed here: for
   // P_k = P_i + G . (x_k - x_i), sum V (P_i + P_k) grad W = 2 P_i Q1 - S G and
