@@ -53,14 +53,7 @@ struct Tank {
   std::vector<double> density;
 
   Tank() {
-    FillSpec spec;
-    spec.spacing = model.spacing;
-    spec.density = model.density;
-    spec.fill_level = level;
-    spec.dimension = 2;
-    spec.hydrostatic_pressure = true;
-    spec.gravity = g;
-    particles = fill_tank(walls.mesh(), spec);
+    particles = fill_water(model, walls.mesh(), level);
     CellList cells(2);
     cells.build(particles.position, kernel.support_radius());
     neighbours = cells.neighbour_list(&kernel);

@@ -192,24 +192,18 @@ TEST_CASE("a 3D box at rest: corners of three walls and edges at the surface in 
   // quartic spline, h = 1.2 L0, 2,250 particles) with the hydrostatic pressure: every
   // particle's pressure acceleration must balance gravity. Measured worst |a_p + g| / g:
   // the floor's corners 1.19e-2, the side walls 7.3e-3, the vertical edges at the
-  // surface 7.5e-3, elsewhere 4.3e-3 (the 3D lattice's quadrature). Before the
-  // octants: the corners 0.30 (their renormalised gradient fell back to the bare sum
-  // as well), the edges at the surface 5.4e-2 and their surface 0.446 L0 away
-  // instead of 0.5 L0. 1.5e-2 holds the first and fails the others.
+  // surface 7.5e-3, elsewhere 4.3e-3 (the 3D lattice's quadrature). With the old
+  // fallback bound of the renormalised gradient the corners had 0.30 (they fell
+  // back to the bare sum); without the octant of two walls and the air the edges at
+  // the surface had 5.4e-2, their surface 0.446 L0 away instead of 0.5 L0.
+  // 1.5e-2 holds the first and fails the others.
   FluidModel model = water();
   model.dimension = 3;
   model.kernel = KernelType::quartic_spline;
   const Kernel kernel(model.kernel, 3, model.smoothing_length);
   const double side = 0.3, depth = 0.2;
   const WallModel walls(make_box(Vector3d::Zero(), Vector3d(side, side, 0.3), NormalSide::inward), model, kernel);
-  FillSpec spec;
-  spec.spacing = model.spacing;
-  spec.density = model.density;
-  spec.fill_level = depth;
-  spec.dimension = 3;
-  spec.hydrostatic_pressure = true;
-  spec.gravity = g;
-  const Particles particles = fill_tank(walls.mesh(), spec);
+  const Particles particles = fill_water(model, walls.mesh(), depth);
   CellList cells(3);
   cells.build(particles.position, kernel.support_radius());
   const NeighbourList neighbours = cells.neighbour_list(&kernel);
