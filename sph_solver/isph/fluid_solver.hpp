@@ -201,10 +201,12 @@ class FluidSolver {
   /// The impulse on each wall vertex (this rank's share) of the pressure of
   /// one projection whose only source is the walls' motion as n.walls holds
   /// it (the contacts' velocities), with v* = 0 and dt = 1, by the PPE
-  /// operator last assembled; `pressure` is the solution (owned and ghosts).
+  /// operator last assembled; `pressure` is the solution (owned and ghosts),
+  /// solved to `residual_floor` (PressurePoisson::solve_assembled) if not 0.
   [[nodiscard]] std::vector<Eigen::Vector3d> wall_motion_impulse(const Neighbourhood& n, std::span<const double> mass,
                                                                  std::span<const double> density,
-                                                                 std::vector<double>& pressure);
+                                                                 std::vector<double>& pressure,
+                                                                 double residual_floor = 0.0);
   /// Balances, migrates and puts the owned particles in cell order.
   void rebalance();
   StageTimers::Scope stage(const std::string& name);

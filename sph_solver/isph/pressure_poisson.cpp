@@ -110,7 +110,8 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   check(KSPSetOperators(ksp_, matrix, matrix), "KSPSetOperators");
 }
 
-PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure) {
+PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure,
+                                                double residual_floor) {
   if (matrix_ == nullptr) throw std::logic_error("PressurePoisson::solve_assembled before assemble");
   const int owned = solved_size_;
   Vec rhs = nullptr;
@@ -129,7 +130,15 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
     check(VecRestoreArray(rhs, &b), "VecRestoreArray");
     check(VecRestoreArray(solution, &x), "VecRestoreArray");
   }
+  PetscReal rtol = 0.0;
+  PetscReal atol = 0.0;
+  PetscReal dtol = 0.0;
+  PetscInt max_iterations = 0;
+  check(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_iterations), "KSPGetTolerances");
+  const bool floored = residual_floor > atol;
+  if (floored) check(KSPSetTolerances(ksp_, rtol, residual_floor, dtol, max_iterations), "KSPSetTolerances");
   const PetscErrorCode solve_code = KSPSolve(ksp_, rhs, solution);
+  if (floored) check(KSPSetTolerances(ksp_, rtol, atol, dtol, max_iterations), "KSPSetTolerances");
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
   PpeSolveReport report;
   PetscInt iterations = 0;

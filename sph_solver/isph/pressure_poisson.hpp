@@ -57,9 +57,14 @@ class PressurePoisson {
   /// solve() in two parts, for many right-hand sides of one operator (the
   /// preconditioner is set up once): assemble the matrix of these particles,
   /// then solve for each source (owned rows), `pressure` the warm start.
+  /// `residual_floor` > 0 stops the solve once its residual norm is that low
+  /// whatever its own source's size (the KSP's absolute tolerance for this
+  /// solve, if above the options' own): for a part of a pressure already
+  /// solved to that residual as a whole.
   void assemble(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
                 std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet);
-  PpeSolveReport solve_assembled(std::span<const double> source, std::span<double> pressure);
+  PpeSolveReport solve_assembled(std::span<const double> source, std::span<double> pressure,
+                                 double residual_floor = 0.0);
 
  private:
   MPI_Comm comm_;
