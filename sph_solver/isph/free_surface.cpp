@@ -125,8 +125,22 @@ std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<c
   // surface layer (up to 1/0.73 of them) would turn grad C of the layers below upwards.
   const std::vector<double> lattice_density(density.size(), n.model.density);
   const auto colour_gradient = concentration_gradient(n, mass, lattice_density);
+  // A surface within reach has its first layer within reach too (free_surface.hpp,
+  // "Which particles"): a deficit that a particle of the first layer's size does
+  // not confirm is the walls' (a curved wall completes the kernel sum to 0.5-2 %).
+  const double first_layer_deficit = table.at(n.model.spacing).z0;
+  const auto deficit_of = [&](int j) { return 1.0 - density[at(j)] / rest_density; };
+  // Its first layer lies between the particle and the surface: within delta (and a
+  // quarter spacing for the stagger of the layers).
+  const auto first_layer_near = [&](int i, double delta) {
+    const NeighbourList& list = n.neighbours;
+    for (int k = list.offsets[at(i)]; k < list.offsets[at(i) + 1]; ++k)
+      if (list.distances[at(k)] <= delta + 0.25 * n.model.spacing && deficit_of(list.indices[at(k)]) >= first_layer_deficit)
+        return true;
+    return false;
+  };
   for (int i = 0; i < n.owned; ++i) {
-    const double deficit = 1.0 - density[at(i)] / rest_density;
+    const double deficit = deficit_of(i);
     if (!(deficit > 0.0)) continue;
     SurfaceContact c;
     const auto walls_of_i = n.walls.of(i);
@@ -138,6 +152,7 @@ std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<c
     c.normal = met.normal;
     const double delta = alone ? table.distance_for_share(deficit) : met.distance;
     if (!(delta < farthest)) continue;
+    if (deficit < first_layer_deficit && !first_layer_near(i, delta)) continue;
     c.active = true;
     c.distance = std::max(delta, closest);
     c.values = table.at(c.distance);
