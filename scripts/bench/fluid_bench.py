@@ -27,9 +27,14 @@ from measured_run import measured_run
 FULL = [
     ("dam_break_2d", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.01", "end_time=2.0"]),
     ("dam_break_2d_fine", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.005", "end_time=2.0"]),
-    ("cylinder_3d_rest", "cases/hydrostatic_3d/case.yaml", ["fluid.spacing=0.04", "end_time=0.5"]),
+    # 0.39 m^3 of liquid: L0 = 0.015 m gives about 116,000 particles (0.04 m gave 6,000).
+    ("cylinder_3d_rest", "cases/hydrostatic_3d/case.yaml", ["fluid.spacing=0.015", "end_time=0.5"]),
 ]
 QUICK = [("dam_break_2d_quick", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.02", "end_time=0.3"])]
+
+
+# The 3D case must be what the benchmark says it is (issue: at least 100k particles).
+MINIMUM_PARTICLES = {"cylinder_3d_rest": 100_000}
 
 
 def run(solver, case, settings, ranks, folder):
@@ -67,6 +72,9 @@ def main():
             for ranks in (1, 2):
                 folder = pathlib.Path(scratch) / f"{name}-{ranks}"
                 figures[name].append(run(args.solver, case, settings, ranks, folder))
+                if figures[name][-1]["particles"] < MINIMUM_PARTICLES.get(name, 0):
+                    raise SystemExit(f"fluid_bench: {name} has {figures[name][-1]['particles']} particles, "
+                                     f"fewer than the {MINIMUM_PARTICLES[name]} it is meant to measure")
                 print(name, figures[name][-1], flush=True)
     (out / "fluid_figures.json").write_text(json.dumps(figures, indent=2))
     lines = ["| case | ranks | particles | steps | particle-steps/s | wall s / sim s | PPE it. mean/max | "
