@@ -7,6 +7,10 @@
 // and the impulse on the wall per unit depth, the wall's added mass, is
 //   m_a = rho (2/h) sum_n coth(k_n L) / k_n^3
 // (0.543 rho h^2 for a wall on an endless reservoir, Westergaard's figure).
+// And in 3D: the whole wall of an upright cylinder (radius R, liquid depth H, rigid
+// floor, free surface) moving inwards together meets
+//   phi = sum_n a_n I0(k_n r) cos(k_n z),  k_n = (n + 1/2) pi / H,
+// and its added mass is m_a = 4 pi rho R H^2 sum_n I0(k_n R) / (I1(k_n R) ((n + 1/2) pi)^3).
 #include <catch2/catch.hpp>
 
 #include <mpi.h>
@@ -16,6 +20,8 @@
 #include <vector>
 
 #include "sph_solver/isph/fluid_solver.hpp"
+#include "sph_solver/particles/filling.hpp"
+#include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
 
 using namespace tankfsi::sph;
@@ -29,6 +35,16 @@ double potential_flow_added_mass(double rho, double width, double depth) {
     sum += 1.0 / (std::tanh(k * width) * k * k * k);
   }
   return rho * 2.0 / depth * sum;
+}
+
+double potential_flow_breathing_mass(double rho, double radius, double depth) {
+  double sum = 0.0;
+  for (int n = 0; n < 2000; ++n) {
+    const double k = (n + 0.5) * std::numbers::pi / depth;
+    sum += std::cyl_bessel_i(0.0, k * radius) / std::cyl_bessel_i(1.0, k * radius) / std::pow((n + 0.5) * std::numbers::pi, 3);
+    if (k * radius > 600.0) break;  // I0 / I1 -> 1 and the terms fall as n^-3; beyond here below 1e-9 of the sum
+  }
+  return 4.0 * std::numbers::pi * rho * radius * depth * depth * sum;
 }
 
 /// The walls' box widened by 2 m: no particle leaves it.
@@ -154,4 +170,55 @@ TEST_CASE("a wall velocity jump's impulse is the operator's and the step's force
   // a wrong weight, wall or time factor would be off by O(1).
   CHECK(operator_error < 1e-6 * largest);
   CHECK(split_error < 1e-6 * force_scale);
+}
+
+TEST_CASE("the added-mass operator of a cylindrical tank's wall matches potential flow", "[added_mass]") {
+  // cases/hydrostatic_3d's tank (R = 0.5 m, 32 facets, dome roof), oil 0.5 m deep,
+  // L0 = 0.05 m (10 particles per radius), particles on rings. The wetted wall's
+  // vertices (z <= H, the foot ring included) all move inwards at unit speed.
+  FluidModel model = tankfsi::test::water();
+  model.dimension = 3;
+  model.kernel = KernelType::quartic_spline;
+  model.spacing = 0.05;
+  model.smoothing_length = 1.2 * model.spacing;
+  model.density = 860.0;
+  const double radius = 0.5, height = 0.6, depth = 0.5, dome = 1.0, edge = 2.0 * model.spacing;
+  const int segments = 32;
+  const DomeRoof roof{dome, static_cast<int>(std::ceil(dome * std::asin(radius / dome) / edge))};
+  const TriangleMesh walls = make_cylindrical_tank(radius, height, segments, static_cast<int>(std::ceil(height / edge)),
+                                                   static_cast<int>(std::ceil(radius / edge)), roof);
+  FillSpec spec;
+  spec.spacing = model.spacing;
+  spec.density = model.density;
+  spec.fill_level = depth;
+  spec.dimension = 3;
+  spec.cylinder_radius = radius * std::cos(std::numbers::pi / segments);
+  FluidSolver solver(MPI_COMM_WORLD, model, walls, fill_tank(walls, spec), domain_around(walls), "-ppe_ksp_rtol 1e-10");
+  std::vector<int> wall;
+  std::vector<Eigen::Vector3d> normals;
+  for (std::size_t v = 0; v < walls.vertex_count(); ++v) {
+    const Eigen::Vector3d& x = walls.vertices()[v];
+    const double r = std::hypot(x.x(), x.y());
+    if (std::abs(r - radius) < 1e-9 && x.z() <= depth + 1e-9) {
+      wall.push_back(static_cast<int>(v));
+      normals.emplace_back(-x.x() / r, -x.y() / r, 0.0);
+    }
+  }
+  REQUIRE(wall.size() == 6 * segments);  // rings at z = 0, 0.1, ..., 0.5
+  std::vector<double> matrix = solver.added_mass_operator(wall, normals);
+  MPI_Allreduce(MPI_IN_PLACE, matrix.data(), static_cast<int>(matrix.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  double total = 0.0;
+  for (const double a : matrix) total += a;
+  // The liquid's surface: the top of its highest layer, z = 0.5 m; the wall's
+  // polygon, apothem 0.4976 m (the potential flow's mass 0.2 % lower than at R).
+  const double expected = potential_flow_breathing_mass(model.density, radius, depth);
+  CAPTURE(total, expected);
+  // Measured 559.5 kg against 588.4 (-4.9 %; the coarse tank of
+  // cases/tank3d_fixed_roof_coarse, 15 particles per radius: -5.6 %), the
+  // discretisation's error at 10 particles per radius and depth (2D side wall at
+  // 20 per depth: -0.1 %, above). While the free surface took the wall's
+  // kernel-sum deficits (0.5-2 % at the facets' vertices) for air deep in the
+  // liquid: 398.7 kg (-32 %; the coarse tank -47 %). 8 % holds the first with
+  // margin and fails the second and any lost wall share or free surface.
+  CHECK(total == Approx(expected).epsilon(0.08));
 }
