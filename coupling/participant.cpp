@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/io/exact_number.hpp"
 #include "common/run/checkpoint_series.hpp"
 #include "common/run/stop_signal.hpp"
 #include "coupling/acceleration/acceleration.hpp"
@@ -689,12 +690,14 @@ void Participant::Impl::complete_controller() {
     output.insert(output.end(), forces.part.begin(), forces.part.end());
   }
   // Residuals of the displacement and force fields, relative to the output.
+  double largest_absolute = 0.0;  // for the message of a window that does not converge
   const auto field_residual = [&](std::size_t begin, std::size_t end, double& relative) {
     std::vector<double> r(end - begin);
     for (std::size_t i = begin; i < end; ++i) r[i - begin] = output[i] - sent_input_[i];
     const double r_norm = norm(link_.local(), r);
     const double x_norm = norm(link_.local(), std::span<const double>(output).subspan(begin, end - begin));
     relative = x_norm > 0 ? r_norm / x_norm : r_norm;
+    largest_absolute = std::max(largest_absolute, r_norm);
     return r_norm <= std::max(settings_.absolute_tolerance, settings_.relative_tolerance * x_norm);
   };
   double residual_d = -1, residual_f = -1;
@@ -722,7 +725,9 @@ void Participant::Impl::complete_controller() {
                         std::to_string(window_start_ + window_length()) + " s) did not converge in " +
                         std::to_string(settings_.max_iterations) +
                         " coupling iterations (coupling.implicit.max_iterations); relative residual " +
-                        std::to_string(std::max(residual_d, residual_f)));
+                        std::to_string(std::max(residual_d, residual_f)) + ", absolute " +
+                        exact_text(largest_absolute) + " (coupling.implicit.absolute_tolerance " +
+                        exact_text(settings_.absolute_tolerance) + ")");
   }
   const bool accepted = converged || out_of_iterations;
   std::vector<double> next;

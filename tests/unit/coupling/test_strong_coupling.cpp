@@ -10,7 +10,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
+#include "coupling/partnership/partner_link.hpp"
 #include "oscillator_run.hpp"
 
 using namespace tankfsi::coupling;
@@ -74,4 +76,36 @@ TEST_CASE("strongly coupled: explicit coupling diverges, implicit converges", "[
       CHECK(most < 100);
     }
   }
+}
+
+// A window that does not converge within coupling.implicit.max_iterations stops
+// both programs (on_nonconvergence: stop), and the message of the side that
+// judges it names the relative and the absolute residual and the absolute
+// tolerance, so that a user can tell a diverging window from a tolerance
+// below the solvers' noise.
+TEST_CASE("a window that does not converge stops the run and names its residuals", "[coupling][strong]") {
+  PartnerSplit split(fluid_rank_choices().front());
+  OscillatorRun run = strongly_coupled(Scheme::implicit, AccelerationType::constant);
+  run.settings.max_iterations = 2;
+  run.settings.relative_tolerance = 1e-14;
+  run.settings.absolute_tolerance = 0.0;
+  std::string message;
+  try {
+    static_cast<void>(run.run(split));
+  } catch (const CouplingError& e) {
+    message = e.what();
+  }
+  CAPTURE(message);
+  REQUIRE_FALSE(message.empty());
+  // The judging side's message starts with the window; its partner's says that
+  // the other program stopped the run.
+  int judged = message.rfind("window 1 (t = ", 0) == 0 ? 1 : 0;
+  CHECK(message.find("did not converge in 2 coupling iterations") != std::string::npos);
+  if (judged == 1) {
+    CHECK(message.find("relative residual ") != std::string::npos);
+    CHECK(message.find(", absolute ") != std::string::npos);
+    CHECK(message.find("(coupling.implicit.absolute_tolerance 0)") != std::string::npos);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &judged, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  CHECK(judged == 1);
 }
