@@ -2,7 +2,9 @@
 // A 2D tank of water at rest on its initial lattice, for the tests of the ISPH sums:
 // 0.6 m wide, filled to 0.4 m (L0 = 0.02 m, quintic spline, h = 1.2 L0), with the
 // hydrostatic pressure rho g (level - y), its neighbour list and wall contacts.
+#include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 #include "sph_solver/isph/particle_terms.hpp"
@@ -41,6 +43,42 @@ inline Particles fill_water(const FluidModel& model, const TriangleMesh& walls, 
   spec.gravity = model.gravity;
   return fill_tank(walls, spec);
 }
+
+/// cases/hydrostatic_3d's tank and liquid: oil 0.5 m deep (quartic spline, L0 =
+/// 0.05 m, h = 1.2 L0) in an upright cylinder of R = 0.5 m, 0.6 m high, with 32
+/// wall facets (2 pi R / 2 L0, as the case's generator) and a dome roof of radius
+/// 1 m, filled on rings inside the facets' apothem with the hydrostatic pressure.
+struct OilCylinder {
+  static constexpr double radius = 0.5;
+  static constexpr double depth = 0.5;
+  static constexpr int segments = 32;
+  FluidModel model = [] {
+    FluidModel m = water();
+    m.dimension = 3;
+    m.kernel = KernelType::quartic_spline;
+    m.spacing = 0.05;
+    m.smoothing_length = 1.2 * m.spacing;
+    m.density = 860.0;
+    return m;
+  }();
+  TriangleMesh walls = [this] {
+    const double height = 0.6, dome = 1.0, edge = 2.0 * model.spacing;
+    const DomeRoof roof{dome, static_cast<int>(std::ceil(dome * std::asin(radius / dome) / edge))};
+    return make_cylindrical_tank(radius, height, segments, static_cast<int>(std::ceil(height / edge)),
+                                 static_cast<int>(std::ceil(radius / edge)), roof);
+  }();
+  Particles particles = [this] {
+    FillSpec spec;
+    spec.spacing = model.spacing;
+    spec.density = model.density;
+    spec.fill_level = depth;
+    spec.dimension = 3;
+    spec.hydrostatic_pressure = true;
+    spec.gravity = model.gravity;
+    spec.cylinder_radius = radius * std::cos(std::numbers::pi / segments);
+    return fill_tank(walls, spec);
+  }();
+};
 
 /// A tank filled to `level` at rest with hydrostatic pressure, and its neighbourhood.
 struct Tank {
