@@ -6,8 +6,12 @@
 // rank before a collective operation. If one rank threw
 // alone, the others would wait for it forever in the next collective call; so
 // each rank reports what it found, and then every rank throws the same error.
+// run_on_root: work one rank does for all (the probe files), with its failure
+// made every rank's the same way.
 #include <mpi.h>
 
+#include <exception>
+#include <stdexcept>
 #include <string>
 
 namespace tankfsi {
@@ -23,5 +27,22 @@ namespace tankfsi {
 /// Collective. Throws std::invalid_argument("context: message (on rank k)")
 /// on every rank if any rank found a problem.
 void throw_if_any_rank_failed(MPI_Comm comm, const std::string& context, const std::string& local_problem);
+
+/// Collective. Calls `work` on rank `root` alone; if it throws, every rank throws
+/// std::runtime_error with its message (and " (on rank root)").
+template <class Work>
+void run_on_root(MPI_Comm comm, int root, Work&& work) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string problem;
+  if (rank == root) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      problem = *e.what() != '\0' ? e.what() : "an error without a message";
+    }
+  }
+  if (const auto found = first_problem_on_any_rank(comm, problem); !found.empty()) throw std::runtime_error(found);
+}
 
 }  // namespace tankfsi

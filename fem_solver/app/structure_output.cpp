@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 
+#include "common/parallel/collective.hpp"
+
 namespace tankfsi::fem {
 namespace {
 
@@ -60,7 +62,8 @@ StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c
       for (int k = 0; k < element.node_count(); ++k)
         (triangles ? triangles_ : quads_).push_back(file_index[static_cast<std::size_t>(element.nodes[static_cast<std::size_t>(k)])]);
     }
-  if (rank == 0) {
+  // Rank 0 writes the probes; a file it cannot continue stops every rank.
+  run_on_root(context.comm, 0, [&] {
     for (const auto& p : probes_)
       probe_files_.push_back(open_probe_file(context.folder->probes() / (p.name + ".csv"),
                                              probe_columns(p.quantity, p.direction.has_value()), c.field_interval,
@@ -71,7 +74,7 @@ StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c
                                  "overturning_moment_y_Nm", "external_force_x_N", "external_force_y_N",
                                  "external_force_z_N", "energy_J"},
         c.field_interval, resume_time);
-  }
+  });
 }
 
 void StructureOutput::write_fields(double time, const NodalValues& displacement, const NodalValues& velocity) {

@@ -319,6 +319,8 @@ def settings(run):
             " / ".join(f"{steps[k]:.4g}" for k in ("min", "mean", "max")) if steps else None, "s"),
         "fluid time step limited by": (limits or None, "steps"),
         "PPE iterations mean / max": (f"{ppe['mean']:.1f} / {ppe['max']}" if ppe else None, ""),
+        # Particles that ended a step just behind a wall, put back in front of it (wall_crossings.hpp).
+        "particles put back at walls": (fluid.get("wall_returned_particles"), "particle-steps"),
         "shell element size": (run.case_value("structure.mesh.element_size"), "m"),
         "shell nodes / quadrilaterals / triangles": (
             f"{structure['nodes']} / {structure.get('quadrilaterals', 0)} / {structure.get('triangles', 0)}"

@@ -20,6 +20,7 @@
 #include "sph_solver/app/fluid_checkpoint.hpp"
 #include "common/log/progress_line.hpp"
 #include "common/io/probe_file.hpp"
+#include "common/parallel/collective.hpp"
 #include "common/run/ground_motion_probe.hpp"
 #include "sph_solver/isph/fluid_probes.hpp"
 #include "sph_solver/isph/fluid_solver.hpp"
@@ -64,7 +65,9 @@ class Outputs {
         particles_(context.comm, context.folder->path(), "fluid", mode_of(resume_time), resume_time),
         walls_(context.comm, context.folder->path(), "walls", mode_of(resume_time), resume_time),
         probes_(c.probes) {
-    if (context.log.rank() == 0) {
+    // Rank 0 writes the probes; a file it cannot continue (a restart whose files
+    // do not match) stops every rank.
+    run_on_root(context.comm, 0, [&] {
       const auto open = [&](const std::string& name, std::vector<std::string> columns) {
         return open_probe_file(context.folder->probes() / (name + ".csv"), std::move(columns), c.field_interval,
                                resume_time);
@@ -74,11 +77,13 @@ class Outputs {
       global_ = open("fluid", {"particles", "overflow_particles", "overflow_volume_m3" + depth_suffix_,
                                "force_x_N" + depth_suffix_, "force_y_N" + depth_suffix_, "force_z_N" + depth_suffix_,
                                "kinetic_energy_J" + depth_suffix_, "time_step_s", "ppe_iterations",
-                               "free_surface_particles", "max_density_error", "max_speed_m_s"});
-    }
+                               "free_surface_particles", "max_density_error", "max_speed_m_s",
+                               "wall_returned_particles"});
+    });
   }
 
-  void sample(double t, const StepReport& report) {
+  /// `wall_returned`: the particles put back in front of a wall so far (wall_crossings.hpp).
+  void sample(double t, const StepReport& report, long long wall_returned) {
     for (std::size_t k = 0; k < probes_.size(); ++k) {
       const auto values = probe_values(solver_, probes_[k], top_);
       if (!probe_files_.empty()) probe_files_[k]->append(t, values);
@@ -93,7 +98,8 @@ class Outputs {
                                              solver_.removed_volume(), total.x(), total.y(), total.z(), energy,
                                              report.time_step, static_cast<double>(report.ppe_iterations),
                                              static_cast<double>(report.free_surface_particles),
-                                             report.max_density_error, report.max_speed});
+                                             report.max_density_error, report.max_speed,
+                                             static_cast<double>(wall_returned)});
     last_total_force_ = total;
   }
 
@@ -192,6 +198,7 @@ struct RunStatistics {
   long long ppe_iterations = 0;
   int max_ppe_iterations = 0;
   double max_density_error = 0.0;
+  long long wall_returned_particles = 0;
   double particle_steps = 0.0;
   double simulated = 0.0;  ///< sum of the steps (more than the run's time when implicit windows repeat)
   std::map<std::string, long long> limiting;
@@ -204,6 +211,7 @@ struct RunStatistics {
     ppe_iterations += r.ppe_iterations;
     max_ppe_iterations = std::max(max_ppe_iterations, r.ppe_iterations);
     max_density_error = std::max(max_density_error, r.max_density_error);
+    wall_returned_particles += r.wall_returned_particles;
     particle_steps += static_cast<double>(r.particles);
     ++limiting[limit];
   }
@@ -212,7 +220,7 @@ struct RunStatistics {
   [[nodiscard]] nlohmann::json to_json() const {
     nlohmann::json j{{"steps", steps}, {"max_dt", max_dt}, {"ppe_iterations", ppe_iterations},
                      {"max_ppe_iterations", max_ppe_iterations}, {"max_density_error", max_density_error},
-                     {"particle_steps", particle_steps}, {"simulated", simulated}, {"limiting", limiting}};
+                     {"wall_returned_particles", wall_returned_particles}, {"particle_steps", particle_steps}, {"simulated", simulated}, {"limiting", limiting}};
     if (std::isfinite(min_dt)) j["min_dt"] = min_dt;
     return j;
   }
@@ -224,6 +232,7 @@ struct RunStatistics {
     s.ppe_iterations = j.at("ppe_iterations").get<long long>();
     s.max_ppe_iterations = j.at("max_ppe_iterations").get<int>();
     s.max_density_error = j.at("max_density_error").get<double>();
+    s.wall_returned_particles = j.value("wall_returned_particles", 0LL);  // not in older checkpoints
     s.particle_steps = j.at("particle_steps").get<double>();
     s.simulated = j.at("simulated").get<double>();
     s.limiting = j.at("limiting").get<std::map<std::string, long long>>();
@@ -301,7 +310,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
     loop.next_field = next_output_time(loop.t, c.field_interval);
     loop.next_checkpoint = next_output_time(loop.t, checkpoint_interval);
   } else {
-    outputs.sample(loop.t, last);
+    outputs.sample(loop.t, last, loop.stats.wall_returned_particles);
     outputs.snapshot(loop.t, solver.particles(), solver.predicted_density(), solver.free_surface_flags());
     loop.next_probe = c.probe_interval;
     loop.next_field = c.field_interval;
@@ -386,7 +395,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
       if (!window_done && coupling->repeats_windows()) continue;
       progress.update(t, stats.steps);
       if (t >= loop.next_probe * (1.0 - 1e-12)) {
-        outputs.sample(t, last);
+        outputs.sample(t, last, stats.wall_returned_particles);
         loop.next_probe += c.probe_interval * std::max(1.0, std::floor((t - loop.next_probe) / c.probe_interval) + 1.0);
       }
       if (t >= loop.next_field * (1.0 - 1e-12)) {
@@ -440,6 +449,7 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
             {"ppe_iterations", {{"mean", static_cast<double>(stats.ppe_iterations) / std::max<long long>(stats.steps, 1)},
                                 {"max", stats.max_ppe_iterations}}},
             {"max_density_error", stats.max_density_error},
+            {"wall_returned_particles", stats.wall_returned_particles},  // wall_crossings.hpp
             {"overflow", {{"particles", solver.removed_count()}, {"volume_m3", solver.removed_volume()}}},
             {"final_wall_force_N", {force.x(), force.y(), force.z()}},
             {"wall_seconds", wall_seconds},  // of this process (a restarted run: since the restart)

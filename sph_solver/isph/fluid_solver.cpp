@@ -4,14 +4,15 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <optional>
 #include <utility>
 
-#include "common/geometry/segment_triangle.hpp"
 #include "sph_solver/isph/free_surface.hpp"
 #include "sph_solver/isph/particle_terms.hpp"
+#include "sph_solver/isph/wall_crossings.hpp"
 #include "sph_solver/neighbours/cell_list.hpp"
 #include "sph_solver/neighbours/neighbour_candidates.hpp"
 
@@ -138,7 +139,7 @@ Offender first_offender(MPI_Comm comm, const Offender& local, long long count) {
 
 std::string point_text(const Eigen::Vector3d& x) {
   std::ostringstream text;
-  text << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+  text << std::setprecision(10) << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
   return text.str();
 }
 
@@ -520,6 +521,10 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
       }
     }
     particles_.velocity = std::move(v_new);
+    report.wall_returned_particles = global_sum(
+        comm_, return_to_walls(walls_, model_.dimension, std::span<const Eigen::Vector3d>(start).first(at(owned)),
+                               std::span<Eigen::Vector3d>(particles_.position).first(at(owned)),
+                               std::span<Eigen::Vector3d>(particles_.velocity).first(at(owned))));
   }
   free_surface_flags_.assign(free_surface.begin(), free_surface.begin() + owned);
   report.removed_particles = removed_this_step_;
@@ -558,23 +563,14 @@ void FluidSolver::check_finite(double t) const {
 }
 
 void FluidSolver::check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const {
-  // A path through a wall (the walls at the step's end): the liquid has left
-  // the tank where no overflow can happen. Candidates are the triangles within
-  // half the path's length of its midpoint (any triangle the path meets is).
+  // A path through a wall (the walls at the step's end) that return_to_walls()
+  // left: the liquid has left the tank where no overflow can happen.
   Offender local;
   long long count = 0;
-  const TriangleMesh& mesh = walls_.mesh();
   for (int i = 0; i < particles_.count(); ++i) {
     const Eigen::Vector3d& from = start[at(i)];
     const Eigen::Vector3d& to = particles_.position[at(i)];
-    const double half = 0.5 * (to - from).norm();
-    if (!(half > 0.0)) continue;
-    int crossed = -1;
-    walls_.index().within(0.5 * (from + to), half * (1.0 + 1e-12), [&](const WallHit& hit) {
-      if (crossed < 0 && segment_meets_triangle(from, to, mesh.corner(hit.triangle, 0), mesh.corner(hit.triangle, 1),
-                                                mesh.corner(hit.triangle, 2), 0.0))
-        crossed = hit.triangle;
-    });
+    const int crossed = crossed_triangle(walls_, from, to);
     if (crossed < 0) continue;
     if (count++ == 0) local = {0, particles_.id[at(i)], from, to, particles_.velocity[at(i)], crossed};
   }

@@ -58,6 +58,7 @@ struct StepReport {
   double ppe_residual = 0.0;
   long long free_surface_particles = 0;  ///< all ranks
   long long removed_particles = 0;       ///< this step, all ranks
+  long long wall_returned_particles = 0; ///< this step, all ranks: put back in front of a wall (wall_crossings.hpp)
   long long particles = 0;               ///< in the step, all ranks
   double max_speed = 0.0;                ///< after the step, all ranks
   double max_pressure = 0.0;             ///< largest |P| of the step, all ranks
@@ -75,7 +76,8 @@ class FluidSolver {
   /// Advances by dt from time t under ground acceleration a_g (the body force is
   /// F = g - a_g at t + dt/2). Collective. Throws std::runtime_error if the PPE
   /// fails, dt breaches the motion margin of the halo, or the step leaves a
-  /// non-finite field or a particle that went through a wall.
+  /// non-finite field or a particle that went through a wall (beyond the small
+  /// overshoots it puts back: wall_crossings.hpp).
   StepReport step(double t, double dt, const Eigen::Vector3d& ground_acceleration);
 
   /// Collective: this rank's share of the force of the fluid on each wall
@@ -195,7 +197,8 @@ class FluidSolver {
   void check_finite(double t) const;
   /// Collective, after a step: the same when a particle's path from `start` (its
   /// position at the step's start) to its position now went through a wall
-  /// (the walls as they are at the step's end).
+  /// (the walls as they are at the step's end) further than return_to_walls()
+  /// puts back (wall_crossings.hpp).
   void check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const;
   void redistribute();
   /// The impulse on each wall vertex (this rank's share) of the pressure of

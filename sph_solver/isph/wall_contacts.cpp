@@ -115,7 +115,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   const TriangleMesh& mesh = walls.mesh();
   const double cutoff = walls.table().cutoff();
   const double cutoff_squared = cutoff * cutoff;
-  const double crossing_tolerance = 0.5 * walls.table().spacing();
+  const double crossing_tolerance = touching_depth * walls.table().spacing();
   const double beside_tolerance = 1e-9 * walls.table().spacing();  // round-off of a foot point
   WallContacts result;
   result.offsets.reserve(positions.size() + 1);
@@ -143,13 +143,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
     // Each hit's plane normal (zero: not a wall of the plane) and the particle's height over it.
     planes.clear();
     for (const WallHit& hit : hits) {
-      Eigen::Vector3d normal = mesh.face_normals()[at(hit.triangle)];
-      if (dimension == 2) {
-        // The front and back of a 2D section's thin walls are not walls of the plane.
-        if (std::abs(normal.z()) > 0.5) normal.setZero();
-        normal.z() = 0.0;
-        if (normal.squaredNorm() > 0.0) normal.normalize();
-      }
+      const Eigen::Vector3d normal = wall_plane_normal(mesh, hit.triangle, dimension);
       planes.push_back({normal, (x - hit.closest.point).dot(normal)});
     }
     const auto first_contact = result.contacts.size();
@@ -217,6 +211,17 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
     result.octant_offsets.push_back(static_cast<int>(result.octants.size()));
   }
   return result;
+}
+
+Eigen::Vector3d wall_plane_normal(const TriangleMesh& mesh, int triangle, int dimension) {
+  Eigen::Vector3d normal = mesh.face_normals()[at(triangle)];
+  if (dimension == 2) {
+    // The front and back of a 2D section's thin walls are not walls of the plane.
+    if (std::abs(normal.z()) > 0.5) normal.setZero();
+    normal.z() = 0.0;
+    if (normal.squaredNorm() > 0.0) normal.normalize();
+  }
+  return normal;
 }
 
 Eigen::Vector3d at_contact(const TriangleMesh& mesh, std::span<const Eigen::Vector3d> vertex_values,

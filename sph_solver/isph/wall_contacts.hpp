@@ -154,6 +154,16 @@ struct WallCandidates {
 [[nodiscard]] WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
                                               int dimension, const WallCandidates* candidates = nullptr);
 
+/// How far behind a wall's plane, in L0, a particle that crossed the triangle
+/// itself still touches it (distance 0, see above); further behind it has left
+/// through the wall.
+inline constexpr double touching_depth = 0.5;
+
+/// The normal (unit, towards the fluid) of triangle t's plane as the particles of
+/// a `dimension`-D run see it; zero for the front and back of a 2D section (and a
+/// degenerate triangle).
+[[nodiscard]] Eigen::Vector3d wall_plane_normal(const TriangleMesh& mesh, int triangle, int dimension);
+
 /// A per-vertex wall field (velocity, ...) at a contact's closest point:
 /// barycentric interpolation over its triangle.
 [[nodiscard]] Eigen::Vector3d at_contact(const TriangleMesh& mesh, std::span<const Eigen::Vector3d> vertex_values,

@@ -13,7 +13,9 @@ the second half of the run) — not time averages —
     (2 L0) within 1 % of rho g (H - y) ("below the first two surface layers");
   - the vertical wall force within 0.5 % of the liquid's weight and the lateral
     force below 0.1 % of it (VALIDATION.md, "Wall force balance");
-  - no particle lost through a wall or out of the tank.
+  - no particle lost through a wall or out of the tank, and none put back in
+    front of a wall it had passed (wall_crossings.hpp: at rest the pressure alone
+    must hold the liquid off the walls).
 The tolerances are VALIDATION.md's.
 """
 import argparse
@@ -107,6 +109,12 @@ def main():
         lost = rows[-1, header.index("overflow_particles")]
         if lost != 0:
             failures.append(f"{int(lost)} particles left the tank")
+        # A liquid at rest keeps off the walls by its pressure alone: none of its
+        # particles may need putting back in front of a wall (wall_crossings.hpp).
+        returned = summary(folder)["fluid"]["wall_returned_particles"]
+        print(f"particles put back in front of a wall: {returned}")
+        if returned != 0:
+            failures.append(f"{returned} particle-steps ended behind a wall and were put back")
     if failures:
         print("FAIL:\n  " + "\n  ".join(failures))
         return 1

@@ -4,7 +4,7 @@ gives the probe histories and field series of the job run straight through.
 
 Usage:
   check_restart.py --ranks 2 [--restart-ranks 1] [--signal TERM|USR1] [--target procs|launcher]
-                   [--at 0.4] [--tolerance 0] -- mpiexec -n NP PROGRAM CASE --output OUTPUT RESTART ...
+                   [--at 0.4] [--tolerance 0] [--mismatched-probe NAME.csv] -- mpiexec -n NP PROGRAM CASE --output OUTPUT RESTART ...
 
 In the job's command line NP is replaced by the rank count (--ranks, or
 --restart-ranks for the restart), OUTPUT by the run folder, and RESTART by
@@ -17,7 +17,9 @@ MPMD line (PROG_A ... : PROG_B ...) names them in each part.
    process the launcher started (`procs`, as a batch scheduler does), or to the
    launcher itself (`launcher`, which forwards SIGUSR1 to them). It must stop
    with a non-zero status, say "stopped by SIG...", and leave a checkpoint.
-3. The restart into that folder must finish.
+3. The restart into that folder must finish (with --mismatched-probe, a restart
+   with another header in that probe file must first stop, on every rank, and
+   the file is put back).
 4. Every probe CSV must equal the straight run's: the same rows (times), and
    values bit for bit (--tolerance 0) or within the tolerance relative to each
    largest magnitude of the file's columns of the same unit; columns of wall-clock time are left out, and
@@ -155,6 +157,10 @@ def main():
     parser.add_argument("--refused-ranks", type=int,
                         help="first try a restart on this many ranks: it must be refused (exit 2, message "
                              "naming the rank counts) and change no file of the run")
+    parser.add_argument("--mismatched-probe", metavar="NAME.csv",
+                        help="first try a restart with another header in this probe file (as a run folder of "
+                             "an older version has): every rank must stop with 'cannot continue probe file' "
+                             "(a hang is a failure), then the file is put back")
     parser.add_argument("job", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     job = args.job[1:] if args.job[:1] == ["--"] else args.job
@@ -211,6 +217,9 @@ def main():
                                  if before.get(p) != after.get(p))
                 raise SystemExit(f"FAIL: the refused restart changed {changed}")
 
+        if args.mismatched_probe:
+            refuse_mismatched_probe(job, restart_ranks, stopped, args.mismatched_probe, min(args.timeout, 120.0))
+
         result = subprocess.run(command_for(job, restart_ranks, stopped, True), capture_output=True, text=True,
                                 timeout=args.timeout)
         if result.returncode != 0:
@@ -230,6 +239,27 @@ def main():
         print(f"PASS: {stop_line.strip()}; restarted on {restart_ranks} rank(s): {files} probe files agree "
               f"{agreement}; {sum(len(t) for t in a.values())} snapshots in {len(a)} series, as straight")
     return 0
+
+
+def refuse_mismatched_probe(job, ranks, stopped, name, timeout):
+    """A restart whose probe file `name` has another header must stop on every
+    rank with the file's name in the message (one rank alone failing would leave
+    the others waiting forever); the file is put back afterwards."""
+    path = stopped / "probes" / name
+    original = path.read_bytes()
+    header, _, rest = original.partition(b"\n")
+    path.write_bytes(header + b",column_of_another_version\n" + rest)
+    try:
+        result = subprocess.run(command_for(job, ranks, stopped, True), capture_output=True, text=True,
+                                timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise SystemExit(f"FAIL: a restart with another header in {name} did not stop within {timeout:.0f} s (hang)")
+    finally:
+        path.write_bytes(original)
+    expected = f"cannot continue probe file '{path}'"
+    if result.returncode == 0 or expected not in result.stderr + result.stdout:
+        raise SystemExit(f"FAIL: a restart with another header in {name} exited {result.returncode} without "
+                         f"\"{expected}\"\n{result.stdout}\n{result.stderr}")
 
 
 def kill_while_writing(process, folder, timeout):

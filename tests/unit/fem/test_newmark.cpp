@@ -222,7 +222,10 @@ struct TwoDofWithAddedMass {
 TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M alone", "[fem][newmark][added_mass]") {
   // Against the same average-acceleration rule written out densely (Eigen),
   // under a changing load. Both solve the same equations; only round-off
-  // separates them (1e-12 of the motion).
+  // separates them: it accumulates over the 400 steps of the recurrence
+  // (about 400 x 1e-16 x the effective matrix's condition number), measured
+  // 1.1e-12 of the motion with one CPU's OpenBLAS and below 1e-12 with
+  // another's; a wrong term in either would show at 1e-4 or more.
   TwoDofWithAddedMass system;
   NewmarkIntegrator newmark = system.integrator(TimeIntegrationRule::average_acceleration());
   const Eigen::Matrix2d inertia = system.inertia(), c = system.c(), stiffness = system.stiffness;
@@ -243,7 +246,7 @@ TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M 
     worst = std::max(worst, (TwoDofWithAddedMass::displacement(newmark) - ue).cwiseAbs().maxCoeff());
     largest = std::max(largest, ue.cwiseAbs().maxCoeff());
   }
-  CHECK(worst < 1e-12 * largest);
+  CHECK(worst < 1e-11 * largest);
 }
 
 TEST_CASE("Generalized alpha against its equations written out densely", "[fem][newmark][generalized_alpha]") {
