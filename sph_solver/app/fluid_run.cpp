@@ -220,7 +220,8 @@ struct RunStatistics {
   [[nodiscard]] nlohmann::json to_json() const {
     nlohmann::json j{{"steps", steps}, {"max_dt", max_dt}, {"ppe_iterations", ppe_iterations},
                      {"max_ppe_iterations", max_ppe_iterations}, {"max_density_error", max_density_error},
-                     {"wall_returned_particles", wall_returned_particles}, {"particle_steps", particle_steps}, {"simulated", simulated}, {"limiting", limiting}};
+                     {"wall_returned_particles", wall_returned_particles}, {"particle_steps", particle_steps},
+                     {"simulated", simulated}, {"limiting", limiting}};
     if (std::isfinite(min_dt)) j["min_dt"] = min_dt;
     return j;
   }

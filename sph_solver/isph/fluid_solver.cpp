@@ -521,11 +521,10 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
       }
     }
     particles_.velocity = std::move(v_new);
-    report.wall_returned_particles = global_sum(
-        comm_, return_to_walls(walls_, model_.dimension, std::span<const Eigen::Vector3d>(start).first(at(owned)),
-                               std::span<Eigen::Vector3d>(particles_.position).first(at(owned)),
-                               std::span<Eigen::Vector3d>(particles_.velocity).first(at(owned))));
   }
+  const WallCrossings crossings = return_to_walls(walls_, model_.dimension, start, particles_.position,
+                                                  particles_.velocity);
+  report.wall_returned_particles = global_sum(comm_, crossings.returned);
   free_surface_flags_.assign(free_surface.begin(), free_surface.begin() + owned);
   report.removed_particles = removed_this_step_;
   report.particles = particles_after_removal_;
@@ -534,7 +533,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   {
     auto scope = stage("checks");
     check_finite(t);
-    check_crossings(start, t);
+    check_crossings(crossings, start, t);
   }
   ++steps_;
   return report;
@@ -562,17 +561,15 @@ void FluidSolver::check_finite(double t) const {
                              point_text(bad.velocity));
 }
 
-void FluidSolver::check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const {
+void FluidSolver::check_crossings(const WallCrossings& crossings, const std::vector<Eigen::Vector3d>& start,
+                                  double t) const {
   // A path through a wall (the walls at the step's end) that return_to_walls()
   // left: the liquid has left the tank where no overflow can happen.
   Offender local;
-  long long count = 0;
-  for (int i = 0; i < particles_.count(); ++i) {
-    const Eigen::Vector3d& from = start[at(i)];
-    const Eigen::Vector3d& to = particles_.position[at(i)];
-    const int crossed = crossed_triangle(walls_, from, to);
-    if (crossed < 0) continue;
-    if (count++ == 0) local = {0, particles_.id[at(i)], from, to, particles_.velocity[at(i)], crossed};
+  const auto count = static_cast<long long>(crossings.through.size());
+  if (count > 0) {
+    const auto [i, triangle] = crossings.through.front();
+    local = {0, particles_.id[at(i)], start[at(i)], particles_.position[at(i)], particles_.velocity[at(i)], triangle};
   }
   if (const Offender bad = first_offender(comm_, local, count); bad.count > 0)
     throw std::runtime_error(step_prefix(t) + std::to_string(bad.count) + " particle(s) crossed a wall; the first, id " +

@@ -45,6 +45,7 @@
 #include "sph_solver/isph/fluid_model.hpp"
 #include "sph_solver/isph/pressure_poisson.hpp"
 #include "sph_solver/isph/wall_contacts.hpp"
+#include "sph_solver/isph/wall_crossings.hpp"
 #include "sph_solver/kernels/kernel.hpp"
 #include "sph_solver/parallel/domain_decomposition.hpp"
 #include "sph_solver/parallel/halo.hpp"
@@ -198,8 +199,8 @@ class FluidSolver {
   /// Collective, after a step: the same when a particle's path from `start` (its
   /// position at the step's start) to its position now went through a wall
   /// (the walls as they are at the step's end) further than return_to_walls()
-  /// puts back (wall_crossings.hpp).
-  void check_crossings(const std::vector<Eigen::Vector3d>& start, double t) const;
+  /// puts back: its `crossings` (wall_crossings.hpp).
+  void check_crossings(const WallCrossings& crossings, const std::vector<Eigen::Vector3d>& start, double t) const;
   void redistribute();
   /// The impulse on each wall vertex (this rank's share) of the pressure of
   /// one projection whose only source is the walls' motion as n.walls holds

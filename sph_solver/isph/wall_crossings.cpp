@@ -22,38 +22,35 @@ int crossed_triangle(const WallModel& walls, const Eigen::Vector3d& from, const 
   return crossed;
 }
 
-long long return_to_walls(const WallModel& walls, int dimension, std::span<const Eigen::Vector3d> start,
-                          std::span<Eigen::Vector3d> position, std::span<Eigen::Vector3d> velocity) {
+WallCrossings return_to_walls(const WallModel& walls, int dimension, std::span<const Eigen::Vector3d> start,
+                             std::span<Eigen::Vector3d> position, std::span<Eigen::Vector3d> velocity) {
   if (start.size() != position.size() || velocity.size() != position.size())
     throw std::invalid_argument("return_to_walls: one start, position and velocity per particle");
   const TriangleMesh& mesh = walls.mesh();
   const double spacing = walls.table().spacing();
   const double deepest = touching_depth * spacing;
   const double gap = 1e-3 * spacing;
-  long long returned = 0;
+  WallCrossings result;
   for (std::size_t i = 0; i < position.size(); ++i) {
-    bool put_back = false;
+    int t = crossed_triangle(walls, start[i], position[i]);
     // One wall at a time: a particle in a corner may have passed two or three.
-    for (int wall = 0; wall < 3; ++wall) {
-      const int t = crossed_triangle(walls, start[i], position[i]);
-      if (t < 0) break;
+    for (int wall = 0; t >= 0 && wall < 3; ++wall) {
       const Eigen::Vector3d normal = wall_plane_normal(mesh, t, dimension);
       const double depth = (mesh.corner(t, 0) - position[i]).dot(normal);
       // In front of the plane the path came from behind it; too deep, it went through.
       if (normal.squaredNorm() == 0.0 || !(depth >= 0.0 && depth <= deepest)) break;
       position[i] += (depth + gap) * normal;
-      const ClosestPoint foot = closest_point_on_triangle(position[i], mesh, t);
-      const auto& corners = mesh.triangles()[static_cast<std::size_t>(t)];
-      Eigen::Vector3d wall_velocity = Eigen::Vector3d::Zero();
-      for (int k = 0; k < 3; ++k)
-        wall_velocity += foot.barycentric[k] * walls.vertex_velocities()[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
-      const double into = (velocity[i] - wall_velocity).dot(normal);
+      WallContact foot;
+      foot.triangle = t;
+      foot.barycentric = closest_point_on_triangle(position[i], mesh, t).barycentric;
+      const double into = (velocity[i] - at_contact(mesh, walls.vertex_velocities(), foot)).dot(normal);
       if (into < 0.0) velocity[i] -= into * normal;
-      put_back = true;
+      if (wall == 0) ++result.returned;
+      t = crossed_triangle(walls, start[i], position[i]);
     }
-    returned += put_back ? 1 : 0;
+    if (t >= 0) result.through.push_back({static_cast<int>(i), t});
   }
-  return returned;
+  return result;
 }
 
 }  // namespace tankfsi::sph

@@ -13,10 +13,12 @@
 // velocity into the wall relative to the wall's own (an inelastic contact). The
 // steps report how many particles they put back. A deeper crossing is a step
 // too long for the liquid's speed or the wall's motion: an error
-// (FluidSolver::check_crossings).
+// (FluidSolver::check_crossings, from the paths this search left).
 #include <Eigen/Core>
 
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "sph_solver/isph/wall_contacts.hpp"
 
@@ -26,10 +28,18 @@ namespace tankfsi::sph {
 /// index among several), or -1.
 [[nodiscard]] int crossed_triangle(const WallModel& walls, const Eigen::Vector3d& from, const Eigen::Vector3d& to);
 
+/// What return_to_walls() did and left.
+struct WallCrossings {
+  long long returned = 0;  ///< particles put back
+  /// (particle, triangle) of each path still through a wall: the particle
+  /// crossed it too deep to be put back (in order of the particles).
+  std::vector<std::pair<int, int>> through;
+};
+
 /// Puts back the particles whose path from `start` to `position` ends at most
-/// touching_depth behind the wall it met (above), in a `dimension`-D run;
-/// returns how many were put back.
-long long return_to_walls(const WallModel& walls, int dimension, std::span<const Eigen::Vector3d> start,
-                          std::span<Eigen::Vector3d> position, std::span<Eigen::Vector3d> velocity);
+/// touching_depth behind the wall it met (above), in a `dimension`-D run, and
+/// names those whose path still goes through a wall.
+WallCrossings return_to_walls(const WallModel& walls, int dimension, std::span<const Eigen::Vector3d> start,
+                              std::span<Eigen::Vector3d> position, std::span<Eigen::Vector3d> velocity);
 
 }  // namespace tankfsi::sph

@@ -1,9 +1,9 @@
 // Particles that end a step just behind a wall (wall_crossings.hpp): put back a
 // thousandth of L0 in front of the wall they met, without their velocity into it
-// relative to the wall; one further behind than L0/2, or a path that meets no
-// wall, is left as it is (for the step's crossing check). In a corner both walls
-// hold. In a whole step: a particle a hair above the floor moving down at 5 m/s
-// ends the step in front of it, and the step reports it.
+// relative to the wall; one further behind than L0/2 is left as it is and named
+// for the step's crossing check, a path that meets no wall is left alone. In a
+// corner both walls hold. In a whole step: a particle a hair above the floor
+// moving down at 5 m/s ends the step in front of it, and the step reports it.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Core>
@@ -40,7 +40,8 @@ TEST_CASE("a particle just past the floor is put back in front of it", "[wall_cr
   const auto before = position;
   const auto velocity_before = velocity;
 
-  CHECK(return_to_walls(tank.walls, 2, start, position, velocity) == 1);
+  const WallCrossings crossings = return_to_walls(tank.walls, 2, start, position, velocity);
+  CHECK(crossings.returned == 1);
   // Put back: on the floor's liquid side by 1e-3 L0, sliding along it.
   CHECK(position[0].x() == Approx(0.31).epsilon(1e-12));
   CHECK(position[0].y() == Approx(1e-3 * l0).epsilon(1e-9));
@@ -49,7 +50,10 @@ TEST_CASE("a particle just past the floor is put back in front of it", "[wall_cr
   // Deeper than L0/2: through the floor, left for the check; no wall met: untouched.
   CHECK(position[1] == before[1]);
   CHECK(velocity[1] == velocity_before[1]);
-  CHECK(crossed_triangle(tank.walls, start[1], position[1]) >= 0);
+  REQUIRE(crossings.through.size() == 1);
+  CHECK(crossings.through[0].first == 1);
+  CHECK(crossings.through[0].second == crossed_triangle(tank.walls, start[1], position[1]));
+  CHECK(crossings.through[0].second >= 0);
   CHECK(position[2] == before[2]);
   CHECK(velocity[2] == velocity_before[2]);
 }
@@ -60,7 +64,7 @@ TEST_CASE("a particle past both walls of a corner is put back inside both", "[wa
   const std::vector<Vector3d> start{{0.005, 0.005, 0}};
   std::vector<Vector3d> position{{-0.2 * l0, -0.3 * l0, 0}};
   std::vector<Vector3d> velocity{{-1, -2, 0}};
-  CHECK(return_to_walls(tank.walls, 2, start, position, velocity) == 1);
+  CHECK(return_to_walls(tank.walls, 2, start, position, velocity).returned == 1);
   CHECK(position[0].x() == Approx(1e-3 * l0).epsilon(1e-9));
   CHECK(position[0].y() == Approx(1e-3 * l0).epsilon(1e-9));
   CHECK(velocity[0].norm() == 0.0);
@@ -76,7 +80,7 @@ TEST_CASE("a wall moving into the liquid gives a particle it caught its own norm
   const std::vector<Vector3d> start{{0.3, 0.2 * l0, 0}};
   std::vector<Vector3d> position{{0.3, -0.2 * l0, 0}};
   std::vector<Vector3d> velocity{{-1, 0.25, 0}};  // moving up slower than the floor
-  CHECK(return_to_walls(tank.walls, 2, start, position, velocity) == 1);
+  CHECK(return_to_walls(tank.walls, 2, start, position, velocity).returned == 1);
   CHECK(velocity[0].isApprox(Vector3d(-1, 1.0, 0), 1e-12));  // the tangential part is the particle's own
 }
 
