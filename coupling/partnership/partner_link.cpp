@@ -1,5 +1,6 @@
 #include "coupling/partnership/partner_link.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <thread>
 
@@ -61,11 +62,11 @@ void PartnerLink::wait(std::vector<MPI_Request>& requests, const std::string& wh
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration<double>(timeout_);
   // First yield the core for a few tens of microseconds (a partner that answers
-  // at once is noticed at once), then sleep in short naps: a partner that
-  // computes for long costs no CPU. Yielding for longer does cost it: with more
-  // ranks than cores each yield hands the core to a computing rank and back.
+  // at once is noticed at once), then sleep in naps of 2 % of the time waited so
+  // far (20 us to 1 ms): a partner that computes for long costs no CPU and few
+  // wake-ups, each of which would take a core from a computing rank when there
+  // are more ranks than cores, and waking late costs at most 2 % of the wait.
   const auto yield_until = start + std::chrono::microseconds(50);
-  const auto short_naps_until = start + std::chrono::milliseconds(5);
   int done = 0;
   for (;;) {
     MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE);
@@ -79,10 +80,12 @@ void PartnerLink::wait(std::vector<MPI_Request>& requests, const std::string& wh
                           " from " + partner_name() + " (rank " + std::to_string(rank_) + " of the " +
                           side_name(side_) + " program)");
     }
-    if (now < yield_until)
+    if (now < yield_until) {
       std::this_thread::yield();
-    else
-      std::this_thread::sleep_for(std::chrono::microseconds(now < short_naps_until ? 20 : 200));
+    } else {
+      const auto nap = std::chrono::duration_cast<std::chrono::microseconds>(now - start) / 50;
+      std::this_thread::sleep_for(std::clamp(nap, std::chrono::microseconds(20), std::chrono::microseconds(1000)));
+    }
   }
   requests.clear();
   wait_seconds_ += std::chrono::duration<double>(Clock::now() - start).count();

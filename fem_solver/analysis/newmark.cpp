@@ -45,21 +45,44 @@ void NewmarkIntegrator::initialise(Vec displacement, Vec velocity, Vec load) {
   petsc_check(VecWAXPY(rhs_.get(), -1.0, ku_.get(), load), "VecWAXPY");
   damping_times(v_.get(), work_.get());
   petsc_check(VecAXPY(rhs_.get(), -1.0, work_.get()), "VecAXPY");
-  if (inertia_)
-    inertia_->solve(rhs_.get(), a_.get());
-  else
-    petsc_check(VecPointwiseDivide(a_.get(), rhs_.get(), m_), "VecPointwiseDivide");
+  solve_inertia();
   // The products the steps carry along (see the header).
   petsc_check(MatMult(k_, v_.get(), kv_.get()), "MatMult");
   petsc_check(MatMult(k_, a_.get(), ka_.get()), "MatMult");
 }
 
-void NewmarkIntegrator::set_added_mass(Mat added_mass, Mat product) {
+void NewmarkIntegrator::set_load(Vec load) {
+  if (!carries_k_products()) {
+    initialise(u_.get(), v_.get(), load);
+    return;
+  }
+  if (load != load_.get()) petsc_check(VecCopy(load, load_.get()), "VecCopy");
+  // a = (M + M_a)^-1 (F - K u - alpha M v - beta_R K v), K u and K v as carried.
+  petsc_check(VecPointwiseMult(work_.get(), m_, v_.get()), "VecPointwiseMult");
+  petsc_check(VecWAXPY(rhs_.get(), -1.0, ku_.get(), load), "VecWAXPY");
+  const PetscScalar weights[2] = {-damping_.alpha, -damping_.beta};
+  Vec terms[2] = {work_.get(), kv_.get()};
+  petsc_check(VecMAXPY(rhs_.get(), 2, weights, terms), "VecMAXPY");
+  solve_inertia();
+  petsc_check(MatMult(k_, a_.get(), ka_.get()), "MatMult");
+}
+
+void NewmarkIntegrator::solve_inertia() {
+  if (inertia_)
+    inertia_->solve(rhs_.get(), a_.get());
+  else
+    petsc_check(VecPointwiseDivide(a_.get(), rhs_.get(), m_), "VecPointwiseDivide");
+}
+
+bool NewmarkIntegrator::carries_k_products() const { return damping_.beta != 0.0 || rule_.alpha_f != 0.0; }
+
+void NewmarkIntegrator::set_added_mass(Mat added_mass, Mat product, std::unique_ptr<LinearSolve> inertia) {
   added_mass_ = added_mass;
   added_mass_product_ = product != nullptr ? product : added_mass;
-  inertia_.reset();
+  inertia_ = std::move(inertia);
   inertia_matrix_.reset();
-  if (added_mass_ != nullptr) {
+  if (added_mass_ == nullptr) inertia_.reset();
+  if (added_mass_ != nullptr && !inertia_) {
     petsc_check(MatDuplicate(added_mass_, MAT_COPY_VALUES, inertia_matrix_.out()), "MatDuplicate");
     petsc_check(MatDiagonalSet(inertia_matrix_.get(), m_, ADD_VALUES), "MatDiagonalSet");
     petsc_check(MatSetOption(inertia_matrix_.get(), MAT_SPD, PETSC_TRUE), "MatSetOption");
@@ -113,7 +136,7 @@ void NewmarkIntegrator::step(double dt, Vec load) {
   const double cm = (1.0 - rule_.alpha_m) / (1.0 - rule_.alpha_f);
   const double am = rule_.alpha_m / (1.0 - rule_.alpha_f);
   const double r = rule_.alpha_f / (1.0 - rule_.alpha_f);
-  const bool k_products = beta_r != 0.0 || r != 0.0;
+  const bool k_products = carries_k_products();
   // rhs = F + r (F_n - K u - C v) + M (cm (a0 u + a2 v + a3 a) - am a) + C (a1 u + a4 v + a5 a)
   //       + M_a (cm (a0 u + a2 v + a3 a) - am a),  C = alpha M + beta_R K:
   //     = F + r F_n + M ((cm a0 + alpha a1) u + (cm a2 + alpha (a4 - r)) v + (cm a3 - am + alpha a5) a)

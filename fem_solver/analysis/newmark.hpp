@@ -71,11 +71,18 @@ class NewmarkIntegrator {
   /// equation of motion with the load `load` (M is diagonal: no solve; with
   /// an added mass one solve with M + M_a).
   void initialise(Vec displacement, Vec velocity, Vec load);
+  /// The same for a new load at the current time, u and v kept: the load of
+  /// a coupling window that jumps at its start. With K u and K v carried
+  /// along (Rayleigh's beta_R or generalized alpha) it needs one product with
+  /// K (K a) instead of initialise()'s four.
+  void set_load(Vec load);
   /// Adds M_a (same layout as K; nullptr: none) to the inertia from the next
   /// step on; K_eff is factorised again. The matrix is kept by reference.
   /// `product` (nullptr: M_a itself) stands for M_a in the steps' products with
-  /// it: the same operator in a cheaper form (normal_added_mass.hpp).
-  void set_added_mass(Mat added_mass, Mat product = nullptr);
+  /// it, `inertia` (nullptr: M + M_a assembled and factorised) for (M + M_a)^-1
+  /// in the accelerations of initialise() and set_load(): the same operators
+  /// in cheaper forms (normal_added_mass.hpp).
+  void set_added_mass(Mat added_mass, Mat product = nullptr, std::unique_ptr<LinearSolve> inertia = nullptr);
   /// Assembles and factorises K_eff for steps of dt now (step() does it on
   /// the first step of a new dt otherwise).
   void prepare(double dt);
@@ -100,6 +107,10 @@ class NewmarkIntegrator {
 
  private:
   void factorise(double dt);
+  /// a = (M + M_a)^-1 rhs_ (M diagonal: a division without an added mass).
+  void solve_inertia();
+  /// Whether step() carries K u, K v and K a along with the state.
+  [[nodiscard]] bool carries_k_products() const;
   void damping_times(Vec x, Vec out) const;  ///< out = C x
 
   Mat k_;
@@ -117,7 +128,7 @@ class NewmarkIntegrator {
   PetscVector u_, v_, a_, rhs_, work_, work2_, a_new_, u_new_;  // created once: no allocation per step
   PetscVector ku_, kv_, ka_, ka_new_;  ///< K u, K v, K a (kept when beta_R != 0 or alpha_f != 0)
   PetscVector load_;                   ///< F at the current time (generalized-alpha's F_n)
-  PetscMatrix inertia_matrix_;         ///< M + M_a, with an added mass
+  PetscMatrix inertia_matrix_;         ///< M + M_a, with an added mass factorised here
 };
 
 }  // namespace tankfsi::fem

@@ -133,11 +133,10 @@ void StructureSolver::set_interface_added_mass(std::span<const double> matrix, s
   }
   petsc_check(MatAssemblyBegin(added_mass_.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(added_mass_.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  integrator_.set_added_mass(added_mass_.get(), normal_added_mass_product(matrix, normals).get());
+  set_normal_added_mass(matrix, normals);
 }
 
-const PetscMatrix& StructureSolver::normal_added_mass_product(std::span<const double> matrix,
-                                                              std::span<const double> normals) {
+void StructureSolver::set_normal_added_mass(std::span<const double> matrix, std::span<const double> normals) {
   // N: row i takes vertex i's free translations onto its normal; A: the operator,
   // rows and columns laid out as N's rows (normal_added_mass.hpp).
   const auto n = static_cast<PetscInt>(interface_.node_ids.size());
@@ -172,12 +171,14 @@ const PetscMatrix& StructureSolver::normal_added_mass_product(std::span<const do
   petsc_check(MatAssemblyBegin(operator_matrix.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(operator_matrix.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   added_mass_product_ = make_normal_added_mass_product(normal_map.get(), operator_matrix.get());
-  return added_mass_product_;
+  integrator_.set_added_mass(added_mass_.get(), added_mass_product_.get(),
+                             make_normal_added_mass_inertia(normal_map.get(), matrix, system_.mass()));
 }
 
 void StructureSolver::balance_acceleration() {
+  const auto stage = time_stage(system_.timers(), "shell_balance");
   build_load(time_);
-  integrator_.initialise(integrator_.displacement(), integrator_.velocity(), load_.get());
+  integrator_.set_load(load_.get());
   mark_state_changed();
 }
 

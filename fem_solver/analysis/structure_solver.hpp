@@ -100,8 +100,10 @@ class StructureSolver {
   };
   void build_load(double t);
   void mark_state_changed();
-  /// M_a's product through its factors (normal_added_mass.hpp), kept in added_mass_product_.
-  const PetscMatrix& normal_added_mass_product(std::span<const double> matrix, std::span<const double> normals);
+  /// Gives the integrator M_a assembled and, through its factors
+  /// (normal_added_mass.hpp), its product (kept in added_mass_product_) and
+  /// the inertia's solve.
+  void set_normal_added_mass(std::span<const double> matrix, std::span<const double> normals);
   const NodalValues& gathered(GatheredState& state, Vec values, double prescribed_scale) const;
   [[nodiscard]] std::vector<double> interface_values(Vec values, double prescribed_scale) const;
 

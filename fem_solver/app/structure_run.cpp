@@ -180,6 +180,7 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   // Implicit windows may be repeated: outputs wait until a window is accepted.
   const bool repeats = coupling && context.config.text("coupling.scheme") == "implicit";
   auto sample = [&]() {
+    const auto scope = context.timers.time("shell_sample");
     StructureTotals totals = support_totals(system.model().mesh, solver.support_forces());
     totals.external_force = solver.total_external_force();
     totals.energy = solver.energy();

@@ -222,6 +222,57 @@ struct TwoDofWithAddedMass {
   }
 };
 
+/// Chung & Hulbert (1993) in acceleration form for the two DOFs, solved for
+/// a' with Eigen (average acceleration for rho_inf = 1):
+///   (1-am)(M+M_a) a' + am (M+M_a) a + C ((1-af) v' + af v) + K ((1-af) u' + af u) = (1-af) F' + af F,
+///   u' = u + dt v + dt^2 ((1/2 - beta) a + beta a'),  v' = v + dt ((1 - gamma) a + gamma a').
+struct DenseGeneralizedAlpha {
+  Eigen::Matrix2d inertia, c, stiffness;
+  TimeIntegrationRule rule;
+  Eigen::Vector2d u, v, a, f;
+  DenseGeneralizedAlpha(const TwoDofWithAddedMass& system, TimeIntegrationRule r)
+      : inertia(system.inertia()), c(system.c()), stiffness(system.stiffness), rule(r), u(system.u0), v(system.v0) {
+    set_load(system.f0);
+  }
+  /// A new load at the same instant: (M + M_a) a = F - K u - C v.
+  void set_load(const Eigen::Vector2d& load) {
+    f = load;
+    a = inertia.ldlt().solve(f - stiffness * u - c * v);
+  }
+  void step(double dt, const Eigen::Vector2d& load) {
+    const double am = rule.alpha_m, af = rule.alpha_f, g = rule.gamma, b = rule.beta;
+    const Eigen::Vector2d u_known = u + dt * v + dt * dt * (0.5 - b) * a;  // u' = u_known + dt^2 beta a'
+    const Eigen::Vector2d v_known = v + dt * (1.0 - g) * a;                // v' = v_known + dt gamma a'
+    const Eigen::Matrix2d effective = (1.0 - am) * inertia + (1.0 - af) * (g * dt * c + b * dt * dt * stiffness);
+    const Eigen::Vector2d a_new =
+        effective.ldlt().solve((1.0 - af) * load + af * f - am * inertia * a - c * ((1.0 - af) * v_known + af * v) -
+                               stiffness * ((1.0 - af) * u_known + af * u));
+    u = u_known + dt * dt * b * a_new;
+    v = v_known + dt * g * a_new;
+    a = a_new;
+    f = load;
+  }
+};
+
+/// Steps the integrator and its dense twin 400 times of 5 ms under the same
+/// changing load, `before_step(n, load)` first at each step; returns the
+/// largest difference of their displacements over the largest displacement.
+template <class BeforeStep>
+double step_beside_dense(TwoDofWithAddedMass& system, NewmarkIntegrator& newmark, DenseGeneralizedAlpha& dense,
+                         BeforeStep before_step) {
+  const double dt = 0.005;
+  double largest = 0.0, worst = 0.0;
+  for (int n = 1; n <= 400; ++n) {
+    const Eigen::Vector2d load(std::sin(7.0 * n * dt), 0.5 * std::cos(3.0 * n * dt));
+    before_step(n, load);
+    system.step(newmark, dt, load);
+    dense.step(dt, load);
+    worst = std::max(worst, (TwoDofWithAddedMass::displacement(newmark) - dense.u).cwiseAbs().maxCoeff());
+    largest = std::max(largest, dense.u.cwiseAbs().maxCoeff());
+  }
+  return worst / largest;
+}
+
 TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M alone", "[fem][newmark][added_mass]") {
   // Each step against the same average-acceleration rule written out densely
   // (Eigen), taken from the integrator's own state (u, v, a) under a changing
@@ -257,40 +308,50 @@ TEST_CASE("Newmark with an added mass: the inertia of M + M_a, the damping of M 
 }
 
 TEST_CASE("Generalized alpha against its equations written out densely", "[fem][newmark][generalized_alpha]") {
-  // Chung & Hulbert (1993) in acceleration form, solved for a' with Eigen:
-  //   (1-am)(M+M_a) a' + am (M+M_a) a + C ((1-af) v' + af v) + K ((1-af) u' + af u) = (1-af) F' + af F,
-  //   u' = u + dt v + dt^2 ((1/2 - beta) a + beta a'),  v' = v + dt ((1 - gamma) a + gamma a'),
-  // against the integrator's displacement form with its carried K products, an
-  // added mass and Rayleigh damping: the same equations, so only round-off
-  // (1e-11 of the motion) separates them. rho_inf = 0.6 exercises every weight.
+  // Chung & Hulbert in acceleration form (DenseGeneralizedAlpha) against the
+  // integrator's displacement form with its carried K products, an added mass
+  // and Rayleigh damping: the same equations, so only round-off (1e-11 of the
+  // motion) separates them. rho_inf = 0.6 exercises every weight.
   const TimeIntegrationRule rule = TimeIntegrationRule::generalized_alpha(0.6);
   REQUIRE(rule.alpha_m == Approx(0.2 / 1.6));
   REQUIRE(rule.alpha_f == Approx(0.6 / 1.6));
   TwoDofWithAddedMass system;
   NewmarkIntegrator newmark = system.integrator(rule);
-  const Eigen::Matrix2d inertia = system.inertia(), c = system.c(), stiffness = system.stiffness;
-  const double am = rule.alpha_m, af = rule.alpha_f, g = rule.gamma, b = rule.beta;
-  Eigen::Vector2d ue = system.u0, ve = system.v0, fe = system.f0;
-  Eigen::Vector2d ae = inertia.ldlt().solve(fe - stiffness * ue - c * ve);
-  const double dt = 0.005;
-  double largest = 0.0, worst = 0.0;
-  for (int n = 1; n <= 400; ++n) {
-    const Eigen::Vector2d load(std::sin(7.0 * n * dt), 0.5 * std::cos(3.0 * n * dt));
-    system.step(newmark, dt, load);
-    const Eigen::Vector2d u_known = ue + dt * ve + dt * dt * (0.5 - b) * ae;  // u' = u_known + dt^2 beta a'
-    const Eigen::Vector2d v_known = ve + dt * (1.0 - g) * ae;                 // v' = v_known + dt gamma a'
-    const Eigen::Matrix2d effective = (1.0 - am) * inertia + (1.0 - af) * (g * dt * c + b * dt * dt * stiffness);
-    const Eigen::Vector2d a_new = effective.ldlt().solve(
-        (1.0 - af) * load + af * fe - am * inertia * ae - c * ((1.0 - af) * v_known + af * ve) -
-        stiffness * ((1.0 - af) * u_known + af * ue));
-    ue = u_known + dt * dt * b * a_new;
-    ve = v_known + dt * g * a_new;
-    ae = a_new;
-    fe = load;
-    worst = std::max(worst, (TwoDofWithAddedMass::displacement(newmark) - ue).cwiseAbs().maxCoeff());
-    largest = std::max(largest, ue.cwiseAbs().maxCoeff());
+  DenseGeneralizedAlpha dense(system, rule);
+  CHECK(step_beside_dense(system, newmark, dense, [](int, const Eigen::Vector2d&) {}) < 1e-11);
+}
+
+TEST_CASE("Newmark: a new load at the same instant sets the acceleration, u and v kept", "[fem][newmark][added_mass]") {
+  // A coupling window's load jumps at its start (set_load). The acceleration
+  // then follows from (M + M_a) a = F - K u - C v with K u and K v as carried
+  // along, and the next steps go on from it: against the dense twin given the
+  // same jump, to the round-off of the 200 steps before it. Generalized alpha
+  // uses the carried K a (a stale one shows at 1e-6 of the motion), average
+  // acceleration with beta_R = 0 carries no products (initialise() instead).
+  for (const bool carried : {true, false}) {
+    DYNAMIC_SECTION((carried ? "generalized alpha, Rayleigh beta" : "average acceleration, no beta")) {
+      TwoDofWithAddedMass system;
+      if (!carried) system.damping.beta = 0.0;
+      const TimeIntegrationRule rule =
+          carried ? TimeIntegrationRule::generalized_alpha(0.6) : TimeIntegrationRule::average_acceleration();
+      NewmarkIntegrator newmark = system.integrator(rule);
+      DenseGeneralizedAlpha dense(system, rule);
+      const auto jump_at_step_200 = [&](int n, const Eigen::Vector2d& load) {
+        if (n != 200) return;
+        const Eigen::Vector2d u = TwoDofWithAddedMass::values(newmark.displacement());
+        const Eigen::Vector2d v = TwoDofWithAddedMass::values(newmark.velocity());
+        const Eigen::Vector2d jump = load + Eigen::Vector2d(3.0, -2.0);
+        TwoDofWithAddedMass::set(system.f, jump);
+        newmark.set_load(system.f.get());
+        dense.set_load(jump);
+        CHECK((TwoDofWithAddedMass::values(newmark.displacement()) - u).cwiseAbs().maxCoeff() == 0.0);
+        CHECK((TwoDofWithAddedMass::values(newmark.velocity()) - v).cwiseAbs().maxCoeff() == 0.0);
+        CHECK((TwoDofWithAddedMass::values(newmark.acceleration()) - dense.a).cwiseAbs().maxCoeff() <
+              1e-10 * dense.a.cwiseAbs().maxCoeff());
+      };
+      CHECK(step_beside_dense(system, newmark, dense, jump_at_step_200) < 1e-11);
+    }
   }
-  CHECK(worst < 1e-11 * largest);
 }
 
 TEST_CASE("Generalized alpha: unresolved modes lose (1 - rho_inf) per step, resolved ones keep second order",
