@@ -10,7 +10,8 @@
 #          parallel staggered and implicit IQN-ILS: time per window, share of time in the coupling
 #          (--quick: 10k vertices, 1:1)
 #   fsi: the coupled pair on the elastic plate (aluminium, and ten times denser), explicit and
-#          implicit: share of wall time in the fluid, the structure, waiting for the partner and
+#          implicit, and on the flexible cylinder, both staggered schemes with the added-mass
+#          operator: share of wall time in the fluid, the structure, waiting for the partner and
 #          coupling work (--quick: the plate, implicit)
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
