@@ -2,7 +2,12 @@
 
 #include "common/run/petsc_defaults.hpp"
 
+#include <unistd.h>
+
 #include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -31,6 +36,44 @@ PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options)
   check(KSPSetTolerances(ksp_, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
   check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  // BoomerAMG builds a new hierarchy every step (the particles move), and that
+  // set-up costs more than its V-cycles (cases/dam_break_2d/README.md): a
+  // cheaper hierarchy — HMIS coarsening, ext+i interpolation of at most 4
+  // entries a row, strong threshold 0.5, one aggressive level — takes about
+  // twice the iterations and less time. Where the case or the command line
+  // sets any of these, theirs holds.
+  PCType type = nullptr;
+  check(PCGetType(pc, &type), "PCGetType");
+  if (type != nullptr && std::string(type) == PCHYPRE) {
+    tankfsi::apply_default_petsc_options(
+        "-ppe_pc_hypre_boomeramg_coarsen_type HMIS -ppe_pc_hypre_boomeramg_interp_type ext+i "
+        "-ppe_pc_hypre_boomeramg_P_max 4 -ppe_pc_hypre_boomeramg_strong_threshold 0.5 "
+        "-ppe_pc_hypre_boomeramg_agg_nl 1");
+    check(PCSetFromOptions(pc), "PCSetFromOptions");
+  }
+}
+
+std::string PressurePoisson::settings() const {
+  // KSPView's full text comes through an ASCII viewer (a string viewer gets
+  // only the types), which writes a file: a temporary one, read back.
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  long long tag = rank == 0 ? static_cast<long long>(getpid()) : 0;
+  MPI_Bcast(&tag, 1, MPI_LONG_LONG, 0, comm_);
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("tankfsi_ppe_settings_" + std::to_string(tag) + "_" + std::to_string(++settings_views_) + ".txt");
+  PetscViewer viewer = nullptr;
+  check(PetscViewerASCIIOpen(comm_, path.c_str(), &viewer), "PetscViewerASCIIOpen");
+  const PetscErrorCode code = KSPView(ksp_, viewer);
+  PetscViewerDestroy(&viewer);
+  check(code, "KSPView");
+  std::string text;
+  if (rank == 0) {
+    std::ifstream in(path);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    std::filesystem::remove(path);
+  }
+  return text;
 }
 
 PressurePoisson::~PressurePoisson() {

@@ -1,8 +1,8 @@
 #pragma once
 // PressurePoisson: the pressure Poisson equation of the projection step (METHOD.md
 // §1 step 2, eq 6), assembled as a distributed PETSc matrix and solved with a KSP
-// whose options carry the prefix -ppe_ (default: CG with hypre BoomerAMG, warm
-// started from the previous pressure).
+// whose options carry the prefix -ppe_ (default: CG with hypre BoomerAMG in a
+// cheap hierarchy, rtol 1e-8, warm started from the previous pressure).
 //
 // Row of a particle i inside the liquid (the Laplacian with the factor 2):
 //   sum_j a_ij (P_i - P_j) = S_i - sum_w 2 Z2 (dP/dn)_w (r_iw + d2),
@@ -66,10 +66,15 @@ class PressurePoisson {
   PpeSolveReport solve_assembled(std::span<const double> source, std::span<double> pressure,
                                  double residual_floor = 0.0);
 
+  /// The solver and preconditioner with their settings, as PETSc's KSPView
+  /// shows them (collective; the text on the first rank, empty on the others).
+  [[nodiscard]] std::string settings() const;
+
  private:
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   int solved_size_ = -1;  ///< local rows of the last solve
+  mutable int settings_views_ = 0;  ///< settings() calls: each its own temporary file
   Mat matrix_ = nullptr;  ///< the last assembled operator
   std::vector<unsigned char> dirichlet_;  ///< its Dirichlet rows (owned)
   // Assembly buffers, reused from step to step: the rows in CSR form (global

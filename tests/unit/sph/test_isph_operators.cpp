@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "sph_solver/isph/particle_terms.hpp"
@@ -155,4 +156,49 @@ TEST_CASE("the PPE solves again after one rank alone lost a particle", "[isph]")
     REQUIRE_NOTHROW(ppe.solve(n, mass, density, index, dirichlet, source, pressure));
     for (int i = 0; i < owned; ++i) CHECK(pressure[static_cast<std::size_t>(i)] == Approx(100.0 * (offset + i + 1)));
   }
+}
+
+namespace {
+
+/// The line of KSPView's text that names `setting` (its spacing varies with the PETSc version).
+std::string setting_line(const std::string& settings, const std::string& setting) {
+  const auto at = settings.find(setting);
+  if (at == std::string::npos) return "";
+  return settings.substr(at, settings.find('\n', at) - at);
+}
+
+}  // namespace
+
+TEST_CASE("the PPE's BoomerAMG takes the cheap hierarchy unless the case sets its own", "[isph]") {
+  // The options live in PETSc's global database: each section clears what it set.
+  const char* names[] = {"-ppe_pc_hypre_boomeramg_coarsen_type", "-ppe_pc_hypre_boomeramg_interp_type",
+                         "-ppe_pc_hypre_boomeramg_P_max", "-ppe_pc_hypre_boomeramg_strong_threshold",
+                         "-ppe_pc_hypre_boomeramg_agg_nl", "-ppe_pc_type"};
+  const auto clear = [&names] {
+    for (const char* name : names) PetscOptionsClearValue(nullptr, name);
+  };
+  clear();
+  SECTION("by default") {
+    const std::string settings = PressurePoisson(MPI_COMM_SELF, "").settings();
+    INFO(settings);
+    CHECK(setting_line(settings, "Coarsen type").find("HMIS") != std::string::npos);
+    CHECK(setting_line(settings, "Interpolation type").find("ext+i") != std::string::npos);
+    CHECK(setting_line(settings, "Threshold for strong coupling").find("0.5") != std::string::npos);
+  }
+  SECTION("the case's own coarsening") {
+    const std::string settings =
+        PressurePoisson(MPI_COMM_SELF, "-ppe_pc_hypre_boomeramg_coarsen_type PMIS").settings();
+    INFO(settings);
+    CHECK(setting_line(settings, "Coarsen type").find("PMIS") != std::string::npos);
+    CHECK(setting_line(settings, "Threshold for strong coupling").find("0.5") != std::string::npos);
+  }
+  SECTION("another preconditioner: no hypre options set") {
+    const std::string settings = PressurePoisson(MPI_COMM_SELF, "-ppe_pc_type jacobi").settings();
+    INFO(settings);
+    CHECK(settings.find("type: jacobi") != std::string::npos);
+    PetscBool set = PETSC_TRUE;
+    PetscOptionsHasName(nullptr, nullptr, "-ppe_pc_hypre_boomeramg_coarsen_type", &set);
+    CHECK(set == PETSC_FALSE);
+  }
+  clear();
 }
