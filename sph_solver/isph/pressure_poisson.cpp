@@ -2,12 +2,9 @@
 
 #include "common/run/petsc_defaults.hpp"
 
-#include <unistd.h>
-
 #include <cctype>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -54,25 +51,20 @@ PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options)
 }
 
 std::string PressurePoisson::settings() const {
-  // KSPView's full text comes through an ASCII viewer (a string viewer gets
-  // only the types), which writes a file: a temporary one, read back.
-  int rank = 0;
-  MPI_Comm_rank(comm_, &rank);
-  long long tag = rank == 0 ? static_cast<long long>(getpid()) : 0;
-  MPI_Bcast(&tag, 1, MPI_LONG_LONG, 0, comm_);
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("tankfsi_ppe_settings_" + std::to_string(tag) + "_" + std::to_string(++settings_views_) + ".txt");
+  // KSPView's full text needs an ASCII viewer (a string viewer shows only the
+  // types); it writes to a FILE, here one in memory.
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  FILE* memory = open_memstream(&buffer, &size);
+  if (memory == nullptr) throw std::runtime_error("PressurePoisson::settings: open_memstream failed");
   PetscViewer viewer = nullptr;
-  check(PetscViewerASCIIOpen(comm_, path.c_str(), &viewer), "PetscViewerASCIIOpen");
-  const PetscErrorCode code = KSPView(ksp_, viewer);
+  PetscErrorCode code = PetscViewerASCIIOpenWithFILE(comm_, memory, &viewer);
+  if (code == 0) code = KSPView(ksp_, viewer);
   PetscViewerDestroy(&viewer);
+  std::fclose(memory);
+  const std::string text(buffer, size);
+  std::free(buffer);
   check(code, "KSPView");
-  std::string text;
-  if (rank == 0) {
-    std::ifstream in(path);
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    std::filesystem::remove(path);
-  }
   return text;
 }
 

@@ -74,7 +74,6 @@ class PressurePoisson {
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   int solved_size_ = -1;  ///< local rows of the last solve
-  mutable int settings_views_ = 0;  ///< settings() calls: each its own temporary file
   Mat matrix_ = nullptr;  ///< the last assembled operator
   std::vector<unsigned char> dirichlet_;  ///< its Dirichlet rows (owned)
   // Assembly buffers, reused from step to step: the rows in CSR form (global
