@@ -305,12 +305,10 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
   };
   std::vector<std::vector<Touch>> touching(count);
   for (int i = 0; i < owned; ++i)
-    for (int c = contacts.offsets[at(i)]; c < contacts.offsets[at(i) + 1]; ++c) {
-      const auto& triangle = walls_.mesh().triangles()[at(contacts.contacts[at(c)].triangle)];
-      for (int k = 0; k < 3; ++k)
-        if (const int j = column_of_vertex[at(triangle[at(k)])]; j >= 0)
-          touching[at(j)].push_back({c, contacts.contacts[at(c)].barycentric[k]});
-    }
+    for (int c = contacts.offsets[at(i)]; c < contacts.offsets[at(i) + 1]; ++c)
+      for_each_vertex_share(walls_.mesh(), contacts.contacts[at(c)], [&](int vertex, double share) {
+        if (const int j = column_of_vertex[at(vertex)]; j >= 0) touching[at(j)].push_back({c, share});
+      });
   Neighbourhood n{kernel_, model_, now.position, now.neighbours, contacts, walls_.mesh(), owned};
   const auto kernel_sum = with_ghosts(halo_, kernel_density(n, mass));
   const std::vector<SurfaceContact> air = surface_contacts(n, mass, kernel_sum, walls_);
@@ -321,7 +319,7 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
   std::vector<double> matrix(count * count, 0.0);
   std::vector<double> pressure;
   for (std::size_t j = 0; j < count; ++j) {
-    for (const Touch& t : touching[j]) contacts.contacts[at(t.contact)].velocity = t.weight * normals[j];
+    for (const Touch& t : touching[j]) contacts.contacts[at(t.contact)].velocity += t.weight * normals[j];
     const auto impulse = wall_motion_impulse(n, mass, density, pressure);
     // The liquid pushes back against the motion: A_ij = -impulse_i . n_i.
     for (std::size_t i = 0; i < count; ++i) matrix[i * count + j] = -impulse[at(vertices[i])].dot(normals[i]);

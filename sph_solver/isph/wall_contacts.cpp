@@ -1,6 +1,7 @@
 #include "sph_solver/isph/wall_contacts.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -107,6 +108,60 @@ void require_usable(const WallCandidates& candidates, const WallModel& walls,
   require_moved_within(candidates.searched, positions, candidates.skin, "find_wall_contacts");
 }
 
+/// A wall met by a particle: its hits (indices into the sorted hits, nearest
+/// first; one more than a contact keeps, for the smooth cut), the nearest one's
+/// height over its plane and smooth normal (which decides what is the same wall).
+struct WallSeen {
+  std::array<std::size_t, max_wall_feet + 1> hits{};
+  int hit_count = 1;
+  double height = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+/// 1 at s = 0 falling to 0 at s = 1 with zero slope at both ends; 0 beyond.
+double taper(double s) { return s >= 1.0 ? 0.0 : (1.0 - s) * (1.0 - s) * (1.0 + 2.0 * s); }
+
+/// The contact of one wall from its hits, blended as find_wall_contacts describes.
+WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& hits,
+                            const std::vector<std::pair<Eigen::Vector3d, double>>& planes, const WallSeen& wall,
+                            int dimension, double band) {
+  const auto distance = [&hits, &wall](int f) {
+    return std::sqrt(hits[wall.hits[static_cast<std::size_t>(f)]].closest.squared_distance);
+  };
+  const double nearest = distance(0);
+  const int kept = std::min(wall.hit_count, max_wall_feet);
+  const double floor = wall.hit_count > max_wall_feet ? taper((distance(max_wall_feet) - nearest) / band) : 0.0;
+  WallContact contact;
+  contact.foot_count = 0;
+  double total = 0.0;
+  for (int f = 0; f < kept; ++f) {
+    const double weight = taper((distance(f) - nearest) / band) - floor;
+    if (f > 0 && !(weight > 0.0)) break;  // sorted by distance: the rest weigh nothing either
+    const WallHit& hit = hits[wall.hits[at(f)]];
+    contact.feet[at(contact.foot_count++)] = WallFoot{hit.triangle, hit.closest.barycentric, weight};
+    total += weight;
+  }
+  // All kept hits as far as the first left out (ties at the cut): the nearest alone.
+  if (!(total > 0.0)) {
+    contact.foot_count = 1;
+    contact.feet[0].weight = total = 1.0;
+  }
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double curvature = 0.0;
+  for (int f = 0; f < contact.foot_count; ++f) {
+    WallFoot& foot = contact.feet[at(f)];
+    foot.weight /= total;
+    const Eigen::Vector3d& plane = planes[wall.hits[at(f)]].first;
+    normal += foot.weight * smooth_normal(walls.corner_values(), foot.triangle, foot.barycentric, plane, dimension);
+    curvature += foot.weight * walls.corner_values().curvature_at(foot.triangle, foot.barycentric);
+  }
+  contact.normal = contact.foot_count == 1 ? wall.normal : normal.normalized();
+  contact.distance = wall.height <= 0.0 ? 0.0 : nearest;
+  contact.values = curved(walls.table().at(contact.distance), curvature);
+  contact.velocity = at_contact(walls.mesh(), walls.vertex_velocities(), contact);
+  return contact;
+}
+
 }  // namespace
 
 WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension,
@@ -121,8 +176,10 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   result.offsets.reserve(positions.size() + 1);
   result.overlap_offsets.reserve(positions.size() + 1);
   result.octant_offsets.reserve(positions.size() + 1);
+  const double blend_band = wall_foot_blend_band * walls.table().spacing();
   std::vector<WallHit> hits;
   std::vector<std::pair<Eigen::Vector3d, double>> planes;
+  std::vector<WallSeen> walls_seen;
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Eigen::Vector3d& x = positions[i];
     hits.clear();
@@ -147,6 +204,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       planes.push_back({normal, (x - hit.closest.point).dot(normal)});
     }
     const auto first_contact = result.contacts.size();
+    walls_seen.clear();
     for (std::size_t k = 0; k < hits.size(); ++k) {
       const WallHit& hit = hits[k];
       const Eigen::Vector3d normal = planes[k].first;
@@ -163,21 +221,22 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
             });
         if (height < -crossing_tolerance || round_convex_edge) continue;
       }
-      const bool same_wall = std::any_of(result.contacts.begin() + static_cast<std::ptrdiff_t>(first_contact),
-                                         result.contacts.end(), [&normal](const WallContact& c) {
-                                           return c.normal.dot(normal) > same_wall_cosine;
-                                         });
-      if (same_wall) continue;
-      WallContact contact;
-      contact.triangle = hit.triangle;
-      contact.barycentric = hit.closest.barycentric;
-      contact.normal = smooth_normal(walls.corner_values(), hit.triangle, contact.barycentric, normal, dimension);
-      contact.distance = height <= 0.0 ? 0.0 : std::sqrt(hit.closest.squared_distance);
-      const double h = walls.corner_values().curvature_at(hit.triangle, contact.barycentric);
-      contact.values = curved(walls.table().at(contact.distance), h);
-      contact.velocity = at_contact(mesh, walls.vertex_velocities(), contact);
-      result.contacts.push_back(contact);
+      const auto same_wall = std::find_if(walls_seen.begin(), walls_seen.end(), [&normal](const WallSeen& w) {
+        return w.normal.dot(normal) > same_wall_cosine;
+      });
+      if (same_wall != walls_seen.end()) {
+        // A further hit of a wall already met: a candidate foot of its contact.
+        if (same_wall->hit_count <= max_wall_feet) same_wall->hits[at(same_wall->hit_count++)] = k;
+        continue;
+      }
+      WallSeen wall;
+      wall.hits[0] = k;
+      wall.height = height;
+      wall.normal = smooth_normal(walls.corner_values(), hit.triangle, hit.closest.barycentric, normal, dimension);
+      walls_seen.push_back(wall);
     }
+    for (const WallSeen& wall : walls_seen)
+      result.contacts.push_back(blended_contact(walls, hits, planes, wall, dimension, blend_band));
     result.offsets.push_back(static_cast<int>(result.contacts.size()));
     // Corners: orthogonal pairs of the particle's walls overlap behind both.
     const auto contacts = std::span<const WallContact>(result.contacts).subspan(first_contact);
@@ -226,15 +285,14 @@ Eigen::Vector3d wall_plane_normal(const TriangleMesh& mesh, int triangle, int di
 
 Eigen::Vector3d at_contact(const TriangleMesh& mesh, std::span<const Eigen::Vector3d> vertex_values,
                            const WallContact& contact) {
-  const auto& tri = mesh.triangles()[at(contact.triangle)];
-  const Eigen::Vector3d& w = contact.barycentric;
-  return w[0] * vertex_values[at(tri[0])] + w[1] * vertex_values[at(tri[1])] + w[2] * vertex_values[at(tri[2])];
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();
+  for_each_vertex_share(mesh, contact, [&](int v, double share) { value += share * vertex_values[at(v)]; });
+  return value;
 }
 
 void add_wall_force(const TriangleMesh& mesh, const WallContact& contact, const Eigen::Vector3d& force,
                     std::vector<Eigen::Vector3d>& vertex_forces) {
-  const auto& tri = mesh.triangles()[at(contact.triangle)];
-  for (int k = 0; k < 3; ++k) vertex_forces[at(tri[at(k)])] += contact.barycentric[k] * force;
+  for_each_vertex_share(mesh, contact, [&](int v, double share) { vertex_forces[at(v)] += share * force; });
 }
 
 }  // namespace tankfsi::sph

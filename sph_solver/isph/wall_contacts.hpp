@@ -41,6 +41,7 @@
 // (wall_corner_values.hpp), so a cylinder's wall keeps 1/(2R) down to its foot.
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -93,10 +94,27 @@ class WallModel {
   std::vector<Eigen::Vector3d> velocities_;
 };
 
+/// A closest point of a wall: a triangle and the barycentric coordinates of the
+/// point on it, with its share of the contact.
+struct WallFoot {
+  int triangle = -1;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  double weight = 1.0;
+};
+
+/// Most closest points a contact blends (see find_wall_contacts).
+inline constexpr int max_wall_feet = 4;
+/// Width of the blend, in L0: hits of one wall whose distance exceeds the
+/// nearest's by less than this share the contact.
+inline constexpr double wall_foot_blend_band = 0.1;
+
 /// One wall seen by one particle.
 struct WallContact {
-  int triangle = -1;
-  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();  ///< of the closest point
+  /// The closest points it stands for, nearest first; weights sum to 1. One,
+  /// but where the nearest triangle of the wall is about to change (see
+  /// find_wall_contacts).
+  std::array<WallFoot, max_wall_feet> feet{};
+  int foot_count = 1;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();       ///< unit, towards the fluid
   double distance = 0.0;                                  ///< r_iw >= 0
   WallKernelValues values;                                ///< curvature-corrected
@@ -147,6 +165,23 @@ struct WallCandidates {
                                                   double skin);
 
 /// The wall contacts of the given particles (METHOD.md eq 15 and the rules above);
+/// each is the nearest triangle of its wall, blended with the wall's next nearest
+/// ones where their distances come within `wall_foot_blend_band` L0 of it.
+/// Why: inside a faceted curved wall (a cylinder) the nearest facet changes on the
+/// bisector of two facets, where the closest point jumps from one facet to the
+/// other; the wall force of the particle then jumped between their vertices and
+/// the wall's normal and velocity at the contact with it, so the fluid's forces on a
+/// deforming wall were not a continuous function of the wall's motion (implicit
+/// coupling stalled at the size of those jumps: cases/flexible_cylinder_3d). Each
+/// foot k of the wall (nearest first, distance d_k, at most max_wall_feet) weighs
+/// taper((d_k - d_0) / band) - taper((d_m - d_0) / band), d_m the distance of the
+/// first hit of the wall left out (taper of it 0 when none), normalised, with
+/// taper(s) = (1 - s)^2 (1 + 2 s) on [0, 1] and 0 beyond: continuous when hits
+/// trade places (two equidistant feet weigh alike) and when one enters or leaves
+/// the band or the kept set. The distance (eq 15), and so the tables, stay the
+/// nearest triangle's; the normal, velocity and curvature at the contact are the
+/// weighted means over its feet, and its wall force is shared out over their
+/// vertices by weight times barycentric coordinate.
 /// with `candidates` (of these particles, moved by at most their skin since) only
 /// their triangles are tested: the same contacts as a search of the index, which
 /// finds the triangles within the cutoff, sorted the same way. Throws
@@ -164,13 +199,26 @@ inline constexpr double touching_depth = 0.5;
 /// degenerate triangle).
 [[nodiscard]] Eigen::Vector3d wall_plane_normal(const TriangleMesh& mesh, int triangle, int dimension);
 
-/// A per-vertex wall field (velocity, ...) at a contact's closest point:
-/// barycentric interpolation over its triangle.
+/// Calls visit(vertex, share) for each corner of each foot of the contact, share =
+/// the foot's weight times the corner's barycentric coordinate (the shares sum to 1;
+/// a vertex of two feet is visited twice).
+template <class Visit>
+void for_each_vertex_share(const TriangleMesh& mesh, const WallContact& contact, Visit&& visit) {
+  for (int f = 0; f < contact.foot_count; ++f) {
+    const WallFoot& foot = contact.feet[static_cast<std::size_t>(f)];
+    const auto& corners = mesh.triangles()[static_cast<std::size_t>(foot.triangle)];
+    for (int k = 0; k < 3; ++k) visit(corners[static_cast<std::size_t>(k)], foot.weight * foot.barycentric[k]);
+  }
+}
+
+/// A per-vertex wall field (velocity, ...) at a contact's closest points:
+/// barycentric interpolation over each foot's triangle, weighted.
 [[nodiscard]] Eigen::Vector3d at_contact(const TriangleMesh& mesh, std::span<const Eigen::Vector3d> vertex_values,
                                          const WallContact& contact);
 
 /// Adds the force `force` that particle i exerts on the wall through `contact` to
-/// the contact triangle's vertices, shared by the barycentric weights.
+/// the vertices of its feet's triangles, shared by weight times barycentric
+/// coordinate.
 void add_wall_force(const TriangleMesh& mesh, const WallContact& contact, const Eigen::Vector3d& force,
                     std::vector<Eigen::Vector3d>& vertex_forces);
 

@@ -41,8 +41,7 @@ WallCrossings return_to_walls(const WallModel& walls, int dimension, std::span<c
       if (normal.squaredNorm() == 0.0 || !(depth >= 0.0 && depth <= deepest)) break;
       position[i] += (depth + gap) * normal;
       WallContact foot;
-      foot.triangle = t;
-      foot.barycentric = closest_point_on_triangle(position[i], mesh, t).barycentric;
+      foot.feet[0] = WallFoot{t, closest_point_on_triangle(position[i], mesh, t).barycentric, 1.0};
       const double into = (velocity[i] - at_contact(mesh, walls.vertex_velocities(), foot)).dot(normal);
       if (into < 0.0) velocity[i] -= into * normal;
       if (wall == 0) ++result.returned;

@@ -138,7 +138,13 @@ TEST_CASE("wall candidates: the contacts of moved particles equal a search of th
     for (std::size_t c = 0; c < expected.contacts.size(); ++c) {
       const WallContact& a = expected.contacts[c];
       const WallContact& b = found.contacts[c];
-      different += a.triangle != b.triangle || a.barycentric != b.barycentric || a.normal != b.normal ||
+      bool same_feet = a.foot_count == b.foot_count;
+      for (int f = 0; same_feet && f < a.foot_count; ++f) {
+        const auto& fa = a.feet[static_cast<std::size_t>(f)];
+        const auto& fb = b.feet[static_cast<std::size_t>(f)];
+        same_feet = fa.triangle == fb.triangle && fa.barycentric == fb.barycentric && fa.weight == fb.weight;
+      }
+      different += !same_feet || a.normal != b.normal ||
                    a.distance != b.distance || a.values.z0 != b.values.z0 || a.values.z2 != b.values.z2;
     }
     CHECK(different == 0);

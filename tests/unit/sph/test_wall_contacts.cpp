@@ -9,6 +9,8 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "sph_solver/isph/wall_contacts.hpp"
@@ -98,4 +100,75 @@ TEST_CASE("a box's corner: the walls' kernel sums complete the lattice, with the
       }
   const auto corner = find_wall_contacts(walls, std::vector<Vector3d>{0.5 * l0 * Vector3d::Ones()}, 3);
   CHECK(corner.octants_of(0).size() == 1);
+}
+
+namespace {
+
+// Each wall vertex's share of the particle's contact with the cylinder's wall.
+std::vector<double> vertex_shares(const WallModel& walls, const Vector3d& x) {
+  const WallContacts contacts = find_wall_contacts(walls, std::vector<Vector3d>{x}, 3);
+  std::vector<double> shares(walls.mesh().vertex_count(), 0.0);
+  for (const WallContact& c : contacts.of(0))
+    if (c.normal.z() < 0.5)  // the side wall, not the floor
+      for_each_vertex_share(walls.mesh(), c, [&shares](int v, double s) { shares[static_cast<std::size_t>(v)] += s; });
+  return shares;
+}
+
+double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double largest = 0.0;
+  for (std::size_t v = 0; v < a.size(); ++v) largest = std::max(largest, std::abs(a[v] - b[v]));
+  return largest;
+}
+
+}  // namespace
+
+TEST_CASE("inside a faceted cylinder the contact changes continuously across two facets' bisector",
+          "[wall_geometry]") {
+  // R = 1 m in 32 facets; the vertical edge at angle 0 is at (1, 0, z), the bisector
+  // of its two facets the plane y = 0. A particle 1.5 L0 inside the edge, moving
+  // across that plane: the nearest facet changes there and its closest point jumps
+  // by 2 d tan(5.6°) = 3 mm (about 1.5 % of a facet's width). The contact blends the
+  // two (wall_contacts.hpp), so its vertex shares (the wall force's distribution and
+  // the wall velocity's interpolation) and its normal change continuously.
+  FluidModel model = tankfsi::test::water();  // L0 = 0.02 m
+  model.dimension = 3;
+  const Kernel kernel(model.kernel, 3, model.smoothing_length);
+  const WallModel walls(make_cylindrical_tank(1.0, 1.0, 32, 8, 4), model, kernel);
+  const double z = 0.47;  // between the wall's horizontal edges
+  const auto at = [z](double y) { return Vector3d(0.97, y, z); };
+
+  // Across the plane by 2e-9 m: the same shares to round-off (a jump was 1e-2).
+  const double eps = 1e-9;
+  CHECK(largest_difference(vertex_shares(walls, at(-eps)), vertex_shares(walls, at(eps))) < 1e-6);
+  const WallContacts across = find_wall_contacts(walls, std::vector<Vector3d>{at(-eps), at(eps)}, 3);
+  REQUIRE(across.of(0).size() == across.of(1).size());
+  for (std::size_t c = 0; c < across.of(0).size(); ++c) {
+    CHECK((across.of(0)[c].normal - across.of(1)[c].normal).norm() < 1e-6);
+    CHECK(across.of(0)[c].distance == Approx(across.of(1)[c].distance).margin(1e-8));
+  }
+  // On the plane the two facets weigh alike.
+  const WallContacts on = find_wall_contacts(walls, std::vector<Vector3d>{at(0.0)}, 3);
+  const auto side = std::find_if(on.of(0).begin(), on.of(0).end(), [](const WallContact& c) { return c.normal.z() < 0.5; });
+  REQUIRE(side != on.of(0).end());
+  REQUIRE(side->foot_count >= 2);
+  CHECK(side->feet[0].weight == Approx(side->feet[1].weight).epsilon(1e-6));
+
+  // Along a sweep of ±L0 in steps of L0/200 no step changes a share by more than the
+  // blend's steepest slope allows (the band, 0.1 L0 of distance, is 1 cm wide
+  // across the plane here; the taper's slope at most 1.5 per band: ~1.5e-2 a step).
+  std::vector<double> before = vertex_shares(walls, at(-0.02));
+  double largest_step = 0.0;
+  for (int k = -199; k <= 200; ++k) {
+    std::vector<double> shares = vertex_shares(walls, at(1e-4 * k));
+    double total = 0.0;
+    for (double s : shares) total += s;
+    CHECK(total == Approx(1.0).epsilon(1e-12));
+    largest_step = std::max(largest_step, largest_difference(before, shares));
+    before = std::move(shares);
+  }
+  CHECK(largest_step < 0.02);
+
+  // In the middle of a facet, far from its edges, the nearest triangle alone.
+  const WallContacts middle = find_wall_contacts(walls, std::vector<Vector3d>{Vector3d(0.97 * std::cos(0.098), 0.97 * std::sin(0.098), z)}, 3);
+  for (const WallContact& c : middle.of(0)) CHECK(c.foot_count == 1);
 }
