@@ -165,8 +165,13 @@ struct WallCandidates {
                                                   double skin);
 
 /// The wall contacts of the given particles (METHOD.md eq 15 and the rules above);
-/// each is the nearest triangle of its wall, blended with the wall's next nearest
-/// ones where their distances come within `wall_foot_blend_band` L0 of it.
+/// with `candidates` (of these particles, moved by at most their skin since) only
+/// their triangles are tested: the same contacts as a search of the index, which
+/// finds the triangles within the cutoff, sorted the same way. Throws
+/// std::invalid_argument for candidates of other points or of a moved wall.
+///
+/// Each contact is the nearest triangle of its wall, blended with the wall's next
+/// nearest ones where their distances come within `wall_foot_blend_band` L0 of it.
 /// Why: inside a faceted curved wall (a cylinder) the nearest facet changes on the
 /// bisector of two facets, where the closest point jumps from one facet to the
 /// other; the wall force of the particle then jumped between their vertices and
@@ -182,10 +187,6 @@ struct WallCandidates {
 /// nearest triangle's; the normal, velocity and curvature at the contact are the
 /// weighted means over its feet, and its wall force is shared out over their
 /// vertices by weight times barycentric coordinate.
-/// with `candidates` (of these particles, moved by at most their skin since) only
-/// their triangles are tested: the same contacts as a search of the index, which
-/// finds the triangles within the cutoff, sorted the same way. Throws
-/// std::invalid_argument for candidates of other points or of a moved wall.
 [[nodiscard]] WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
                                               int dimension, const WallCandidates* candidates = nullptr);
 
