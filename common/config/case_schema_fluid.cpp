@@ -33,7 +33,12 @@ std::vector<KeySpec> fluid_keys() {
                "the halo allow for); the last good state is kept.")
           .default_is("1").above(0),
       real_key("fluid.ppe.density_error_weight",
-               "Weight gamma of the density-error part of the pressure Poisson source term.")
+               "Weight gamma of the density-error part of the pressure Poisson source term, "
+               "gamma (rho0 - rho*) / dt^2. Its pressure answer to a density error e is about "
+               "gamma rho0 e L0^2 / dt^2 and each step moves particles by about gamma e L0: with steps "
+               "far below the fluid's own (a short coupling window), lower it, or the filling's "
+               "kernel-sum errors at curved walls start the liquid moving (case READMEs of "
+               "tank3d_fixed_roof_coarse and flexible_cylinder_3d).")
           .default_is("0.01").at_least(0).at_most(1),
       real_key("fluid.ppe.free_surface_threshold",
                "Particles with density below this fraction of the reference density (or a kernel support "
