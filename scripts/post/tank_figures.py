@@ -55,24 +55,48 @@ def input_motion(run, ground, source):
     return motion
 
 
+def model_liquid_depth(level, spacing):
+    """The depth of the liquid the fluid model holds: the top of its highest
+    particle layer. The filling (sph_solver/particles/filling.hpp) lays layers
+    at (k + 1/2) L0 above the floor while they stay below the level, so the
+    level rounds to whole layers (14.8 m at L0 = 1 m: 15.0 m)."""
+    return math.ceil(level / spacing - 0.5 - 1e-9) * spacing
+
+
 def theory_periods(run):
     """Convective and impulsive periods of EN 1998-4 Annex A (tank_theory.py)
-    for the case's tank, with a note where one cannot be had."""
-    theory = {"convective_period_theory_s": None, "impulsive_period_theory_s": None, "notes": []}
+    for the case's tank, with a note where one cannot be had; and the same for
+    the liquid depth the model holds (`model_depth`), when the case's spacing
+    is known."""
+    theory = {"convective_period_theory_s": None, "impulsive_period_theory_s": None, "notes": [],
+              "model_depth": None}
     radius = run.case_value("fluid.geometry.radius")
     level = run.case_value("fluid.fill.level")
     if run.case_value("fluid.geometry.type") != "cylindrical_tank" or not radius or not level:
         theory["notes"].append("no theory periods: the fluid's tank is not a cylindrical_tank with a fill level")
         return theory
+    spacing = run.case_value("fluid.spacing")
+    depths = {"case": level}
+    if spacing:
+        depths["model"] = model_liquid_depth(level, spacing)
+        theory["model_depth"] = {"liquid_depth_m": depths["model"], "fill_level_m": level, "spacing_m": spacing,
+                                 "convective_period_s": None, "impulsive_period_s": None}
     theory["convective_period_theory_s"] = tank_theory.convective_period(radius, level)
+    if "model" in depths:
+        theory["model_depth"]["convective_period_s"] = tank_theory.convective_period(radius, depths["model"])
     walls = [r for r in run.case_value("structure.regions", []) or [] if r.get("name") == "wall"]
     young = run.case_value("structure.material.young_modulus")
     if not walls or not young:
         theory["notes"].append("no impulsive theory period: the case has no structure wall (rigid walls do not bulge)")
         return theory
     try:
-        theory["impulsive_period_theory_s"] = tank_theory.impulsive_period(
-            radius, level, run.case_value("fluid.density"), walls[0]["thickness"], young)
+        for which, depth in depths.items():
+            period = tank_theory.impulsive_period(radius, depth, run.case_value("fluid.density"),
+                                                  walls[0]["thickness"], young)
+            if which == "case":
+                theory["impulsive_period_theory_s"] = period
+            else:
+                theory["model_depth"]["impulsive_period_s"] = period
         theory["wall_thickness_m"] = walls[0]["thickness"]
     except ValueError as reason:
         theory["notes"].append(f"no impulsive theory period: {reason}")

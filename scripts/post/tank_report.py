@@ -91,9 +91,15 @@ def combined_summary(run, motion, theory, identification, wave, pressure, cleara
         entry = identification[kind]["best"]
         return entry[0] if entry else None
 
-    def difference(kind, reference):
-        value, ref = best(kind, "period_s"), theory[reference]
+    def difference(kind, reference, periods=theory):
+        value, ref = best(kind, "period_s"), periods[reference]
         return 100 * (value / ref - 1) if value and ref else None
+
+    model_depth = theory.get("model_depth")
+    if model_depth:
+        model_depth = dict(model_depth,
+                           sloshing_difference_percent=difference("sloshing", "convective_period_s", model_depth),
+                           bulging_difference_percent=difference("bulging", "impulsive_period_s", model_depth))
 
     return {
         "run_folder": str(run.folder),
@@ -109,6 +115,7 @@ def combined_summary(run, motion, theory, identification, wave, pressure, cleara
         "impulsive_period_theory_s": theory["impulsive_period_theory_s"],
         "sloshing_period_difference_percent": difference("sloshing", "convective_period_theory_s"),
         "bulging_period_difference_percent": difference("bulging", "impulsive_period_theory_s"),
+        "theory_at_model_depth": model_depth,
         "period_identification": {kind: result["records"] for kind, result in identification.items()},
         "peak_wave_height_m": {name: f["peak_m"] for name, f in wave.items()},
         "wave_heights": wave,

@@ -131,15 +131,30 @@ def case_explanation(case_files):
 def _periods(summary, case_files):
     """Identified against theory, every record's outcome, the notes and where the
     differences come from: the case README's word, or the marked place for it."""
-    lines = ["## Natural periods", "",
-             "| period | identified | ± 1σ | theory (EN 1998-4 Annex A) | difference |", "|---|---|---|---|---|"]
-    for kind, theory_key, label in (("sloshing", "convective_period_theory_s", "sloshing (convective)"),
-                                    ("bulging", "impulsive_period_theory_s", "bulging (impulsive)")):
+    model = summary.get("theory_at_model_depth")
+    header = "| period | identified | ± 1σ | theory (EN 1998-4 Annex A) | difference |"
+    rule = "|---|---|---|---|---|"
+    if model:
+        header += f" theory for the model's {model['liquid_depth_m']:.2f} m of liquid | difference |"
+        rule += "---|---|"
+    lines = ["## Natural periods", "", header, rule]
+    for kind, theory_key, model_key, label in (
+            ("sloshing", "convective_period_theory_s", "convective_period_s", "sloshing (convective)"),
+            ("bulging", "impulsive_period_theory_s", "impulsive_period_s", "bulging (impulsive)")):
         difference = summary[f"{kind}_period_difference_percent"]
         identified, std, theory = summary[f"{kind}_period_s"], summary[f"{kind}_period_std_s"], summary[theory_key]
-        lines.append(f"| {label} | {f'{identified:.4g} s' if identified else 'not identified'} | "
-                     f"{f'{std:.2g} s' if identified else '—'} | {f'{theory:.4g} s' if theory else '—'} | "
-                     f"{'%+.1f %%' % difference if difference is not None else '—'} |")
+        row = (f"| {label} | {f'{identified:.4g} s' if identified else 'not identified'} | "
+               f"{f'{std:.2g} s' if identified else '—'} | {f'{theory:.4g} s' if theory else '—'} | "
+               f"{'%+.1f %%' % difference if difference is not None else '—'} |")
+        if model:
+            at_depth, off = model[model_key], model[f"{kind}_difference_percent"]
+            row += (f" {f'{at_depth:.4g} s' if at_depth else '—'} | "
+                    f"{'%+.1f %%' % off if off is not None else '—'} |")
+        lines.append(row)
+    if model:
+        lines += ["", f"The case fills to {model['fill_level_m']:.2f} m; the model's particle layers of "
+                  f"{model['spacing_m']:.4g} m hold {model['liquid_depth_m']:.2f} m of liquid (the top of "
+                  "the highest layer: sph_solver/particles/filling.hpp), the depth its periods belong to."]
     lines += ["", "Identified by fitting a single-degree-of-freedom oscillator driven by the recorded ground "
               "acceleration to each record (scripts/post/tank_periods.py); the record with the smallest relative "
               "uncertainty gives the figure. Every record:", "",

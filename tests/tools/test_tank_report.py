@@ -24,6 +24,7 @@ import yaml
 POST = pathlib.Path(__file__).resolve().parents[2] / "scripts" / "post"
 sys.path.insert(0, str(POST))
 import tank_report  # noqa: E402
+import tank_theory  # noqa: E402
 import tank_report_markdown  # noqa: E402
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from oscillator_records import oscillator_record as newmark  # noqa: E402
@@ -294,6 +295,15 @@ with tempfile.TemporaryDirectory() as scratch:
     check("theory periods of the paper's tank (5.88 s, 0.19 s)",
           near(summary.get("convective_period_theory_s"), 5.88, 0.005)
           and near(summary.get("impulsive_period_theory_s"), 0.19, 0.005))
+    # The fake case's 14.8 m on layers of L0 = 2 m: layers at 1, 3, ..., 13 m
+    # (15 m would be above the level), so the model holds 14 m of liquid.
+    model = summary.get("theory_at_model_depth") or {}
+    check("theory periods for the model's 14 m of liquid beside the case's 14.8 m",
+          near(model.get("liquid_depth_m"), 14.0, 1e-12)
+          and near(model.get("convective_period_s"), tank_theory.convective_period(RADIUS, 14.0), 1e-12)
+          and near(model.get("impulsive_period_s"),
+                   tank_theory.impulsive_period(RADIUS, 14.0, 860, 0.015, 206e9), 1e-12),
+          str(model))
     waves = summary.get("peak_wave_height_m", {})
     check("peak wave height of every wave probe",
           set(waves) == set(WAVE_ANGLES) and all(near(waves[n], v, 1e-9) for n, v in expected["wave"].items()))
@@ -317,6 +327,8 @@ with tempfile.TemporaryDirectory() as scratch:
     report = (coupled / "report.md").read_text() if (coupled / "report.md").is_file() else ""
     check("report links every plot", all(f"](plots/{p})" in report for p in PLOTS))
     check("report leaves the marked place for the case README", tank_report_markdown.PLACEHOLDER in report)
+    check("report sets the periods beside the theory for the model's depth",
+          "theory for the model's 14.00 m of liquid" in report)
     check("report has the settings and the run time", "| coupling scheme | parallel_staggered |" in report
           and "particle-steps/s" in report)
     check("the programs' own summaries are untouched",
