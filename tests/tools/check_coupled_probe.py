@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Runs a coupled case (sph_solver : fem_solver) and checks one probe's mean
-over the settled part of the run against a reference value; optionally the
+over the settled part of the run against a reference value (with
+--each-sample: every sample there, not only their mean); optionally the
 same case on other rank counts against the first run, and the impulse balance
 of every window.
 
   check_coupled_probe.py --case CASE --probe structure:midspan:displacement_m
-      --mean-after 0.1 --reference -7.30e-5 --tolerance 0.03
+      --mean-after 0.1 --reference -7.30e-5 --tolerance 0.03 [--each-sample]
       [--fluid-ranks 1] [--structure-ranks 1] [--also-ranks 2:1 --agreement 1e-3]
       [--impulse-round-off 1e-9] [--set KEY=VALUE ...] [--coupling YAML] --folder DIR
 
@@ -45,6 +46,8 @@ def main():
     parser.add_argument("--mean-after", type=float, required=True)
     parser.add_argument("--reference", type=float, required=True)
     parser.add_argument("--tolerance", type=float, required=True, help="relative")
+    parser.add_argument("--each-sample", action="store_true",
+                        help="every sample after --mean-after within the tolerance, not only their mean")
     parser.add_argument("--also-ranks", action="append", default=[], help="F:S rank counts run again and compared")
     parser.add_argument("--agreement", type=float, default=1e-3,
                         help="largest probe difference between rank counts, relative to |reference|")
@@ -84,6 +87,14 @@ def main():
         if abs(error) > args.tolerance:
             failures.append(f"{label}: mean {mean:.6e} is {100 * error:+.2f} % off the reference "
                             f"(tolerance {100 * args.tolerance:.1f} %)")
+        if args.each_sample:
+            samples = [(t, v / args.reference - 1.0) for t, v in zip(probe["time_s"], probe[column])
+                       if t >= args.mean_after]
+            when, worst = max(samples, key=lambda sample: abs(sample[1]))
+            print(f"ranks {label}: the sample farthest from the reference: {100 * worst:+.2f} % at t = {when:g} s")
+            if abs(worst) > args.tolerance:
+                failures.append(f"{label}: the sample at t = {when:g} s is {100 * worst:+.2f} % off the reference "
+                                f"(tolerance {100 * args.tolerance:.1f} % for every sample)")
         if args.impulse_round_off is not None:
             largest = coupling["largest_window_impulse_Ns"]
             difference = coupling["largest_window_impulse_error_Ns"]
