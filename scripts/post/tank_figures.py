@@ -133,7 +133,10 @@ def identify_periods(run, ground, theory, bands=None):
     reference = {"sloshing": (theory["convective_period_theory_s"], SLOSHING_BAND_FACTOR),
                  "bulging": (theory["impulsive_period_theory_s"], BULGING_BAND_FACTOR)}
     result = {kind: {"records": {}, "best": None, "fits": {}, "notes": []} for kind in reference}
+    ends = {}  # the latest time of each kind's records
     for kind, name, time_s, values, feedthrough, quantity in period_records(run):
+        if len(time_s):
+            ends[kind] = max(ends.get(kind, float(time_s[-1])), float(time_s[-1]))
         entry = result[kind]["records"]
         period, factor = reference[kind]
         note = _resolution_note(time_s, period)
@@ -166,7 +169,72 @@ def identify_periods(run, ground, theory, bands=None):
         best = result[kind]["best"]
         if best is None or estimate.period_std_s / estimate.period_s < best[1]["period_std_s"] / best[1]["period_s"]:
             result[kind]["best"] = (name, entry[name])
+    for kind, entry in result.items():
+        entry["range"], note = records_agreement(kind, entry["records"])
+        for note in (note, forced_record_note(kind, ground, ends.get(kind), reference[kind][0])):
+            if note:
+                entry["notes"].append(note)
     return result
+
+
+# A record of fewer cycles than this rests on its free swing for the period;
+# over more, the transients of a broadband motion determine it too.
+FEW_CYCLES = 10
+# The ground still shakes when its horizontal acceleration over the record's
+# last two periods reaches this share of the record's peak.
+STILL_SHARE = 0.05
+
+
+def forced_record_note(kind, ground, end_s, period_s):
+    """A note when a record of few cycles of the theory period ends while the
+    ground still shakes: its period then rests on forced response alone, which
+    fixes it less well than a free swing (the fit cannot tell the tank's own
+    period from the motion's dominant one as surely). None otherwise."""
+    if ground is None or end_s is None or not period_s or end_s / period_s >= FEW_CYCLES:
+        return None
+    time_s = np.asarray(ground["time_s"])
+    ax, ay, _ = ground_components(ground, time_s)
+    horizontal = np.hypot(ax, ay)
+    shaking = time_s <= end_s
+    last = shaking & (time_s >= end_s - 2 * period_s)
+    peak = float(np.max(horizontal[shaking])) if np.any(shaking) else 0.0
+    if peak == 0.0 or not np.any(last):
+        return None
+    share = float(np.max(horizontal[last])) / peak
+    if share < STILL_SHARE:
+        return None
+    return (f"the records end while the ground still shakes (over their last two theory periods up to "
+            f"{100 * share:.0f} % of the peak horizontal acceleration) and hold {end_s / period_s:.1f} of them: the "
+            f"{kind} period rests on forced response alone, which fixes it less well than a free swing; a run that "
+            "goes on past the motion's end (or the motion cut short) shows the free swing")
+
+
+# Two records' periods disagree when they differ by more than this many
+# standard deviations of their difference (two: a 5 % chance for one pair of
+# records whose deviations are right).
+DISAGREEMENT_SIGMAS = 2.0
+
+
+def records_agreement(kind, records):
+    """The range of the periods the records identified ([shortest, longest] s,
+    None for fewer than two) and, when two of them differ by more than their
+    standard deviations allow, a note that says so: each fit's deviation counts
+    the misfit as noise, so it understates the uncertainty when the response is
+    not the oscillator's (a forced record of few cycles, a non-linear wave), and
+    a record may have found another mode."""
+    periods = [(name, r["period_s"], r["period_std_s"]) for name, r in records.items() if "period_s" in r]
+    if len(periods) < 2:
+        return None, None
+    span = [min(p for _, p, _ in periods), max(p for _, p, _ in periods)]
+    worst = max(((abs(a[1] - b[1]) / math.hypot(a[2], b[2]), a, b) for i, a in enumerate(periods)
+                 for b in periods[i + 1:]), key=lambda item: item[0])
+    if worst[0] <= DISAGREEMENT_SIGMAS:
+        return span, None
+    sigmas, a, b = worst
+    return span, (f"the records disagree: {a[0]} {a[1]:.4g} s and {b[0]} {b[1]:.4g} s differ by {sigmas:.1f} "
+                  f"standard deviations of their difference (all records: {span[0]:.4g}-{span[1]:.4g} s). A fit's "
+                  f"deviation takes its misfit for noise: the {kind} period is less certain than the deviations "
+                  "say, or a record shows another mode")
 
 
 def _resolution_note(time_s, period_s):

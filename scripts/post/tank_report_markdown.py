@@ -59,7 +59,11 @@ def _input_motion(motion):
 def _with_std(summary, kind):
     """An identified period with its standard deviation, for the key figures."""
     value = summary[f"{kind}_period_s"]
-    return f"{value:.4g} ± {summary[f'{kind}_period_std_s']:.2g}" if value else "not identified"
+    if not value:
+        return "not identified"
+    span = summary.get(f"{kind}_period_records_range_s")
+    spread = f" (records {span[0]:.4g}–{span[1]:.4g})" if span else ""
+    return f"{value:.4g} ± {summary[f'{kind}_period_std_s']:.2g}{spread}"
 
 
 def _key_figures(summary):

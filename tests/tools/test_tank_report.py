@@ -8,7 +8,9 @@ combined summary must hold every promised key with the right figures, every
 promised plot must exist, the programs' own summaries must stay untouched;
 a failed run (no summaries, an error in its log), a fluid-only run in one
 folder without a ground record, and a run whose fluid summary gives the roof
-clearance must be reported without a crash.
+clearance must be reported without a crash. Records whose periods disagree
+beyond their deviations, and records of few cycles that end while the
+ground shakes, must be said to.
 Prints '<n> passed, <m> failed' and exits non-zero on a failure."""
 import json
 import math
@@ -23,6 +25,7 @@ import yaml
 
 POST = pathlib.Path(__file__).resolve().parents[2] / "scripts" / "post"
 sys.path.insert(0, str(POST))
+import tank_figures  # noqa: E402
 import tank_report  # noqa: E402
 import tank_theory  # noqa: E402
 import tank_report_markdown  # noqa: E402
@@ -295,6 +298,10 @@ with tempfile.TemporaryDirectory() as scratch:
     check("theory periods of the paper's tank (5.88 s, 0.19 s)",
           near(summary.get("convective_period_theory_s"), 5.88, 0.005)
           and near(summary.get("impulsive_period_theory_s"), 0.19, 0.005))
+    span = summary.get("sloshing_period_records_range_s") or [0, 0]
+    check("the sloshing records' range is stated and agrees (no disagreement note)",
+          span[0] <= summary.get("sloshing_period_s", 0) <= span[1] and span[1] / span[0] < 1.02
+          and not any("disagree" in note for note in summary.get("period_notes", {}).get("sloshing", [])), str(span))
     # The fake case's 14.8 m on layers of L0 = 2 m: layers at 1, 3, ..., 13 m
     # (15 m would be above the level), so the model holds 14 m of liquid.
     model = summary.get("theory_at_model_depth") or {}
@@ -385,6 +392,32 @@ with tempfile.TemporaryDirectory() as scratch:
     summary, _ = tank_report.build_report(own_clearance)
     check("roof_clearance_m of the fluid summary is used", summary["min_roof_clearance_m"] == 2.5
           and "fluid summary" in summary["roof_clearance"]["source"])
+
+# 6. Records that disagree beyond their deviations (the coarse tank's forced
+# fits: 6.136 +- 0.10 s against 6.616 +- 0.18 s) are said to, with their range.
+records = {"wave_0deg": {"period_s": 6.136, "period_std_s": 0.10}, "wave_90deg": {"reason": "uncertain"},
+           "wave_180deg": {"period_s": 6.616, "period_std_s": 0.18},
+           "wave_270deg": {"period_s": 6.143, "period_std_s": 0.052}}
+span, note = tank_figures.records_agreement("sloshing", records)
+check("disagreeing records: their range and a note naming the pair most deviations apart (2.5)",
+      span == [6.136, 6.616] and note is not None and "wave_180deg 6.616 s and wave_270deg 6.143 s" in note
+      and "2.5 standard" in note, str(note))
+records["wave_180deg"]["period_s"] = 6.30  # 0.8 deviations of the difference from 6.136, 0.9 from 6.143
+span, note = tank_figures.records_agreement("sloshing", records)
+check("records within their deviations: the range, no note", span == [6.136, 6.30] and note is None, str(note))
+check("one record: no range", tank_figures.records_agreement("bulging", {"p": records["wave_0deg"]}) == (None, None))
+
+# 7. A record of few cycles that ends while the ground shakes is said to hold
+# forced response alone; one that ends after the motion, or holds many
+# cycles, is not.
+time_s = np.arange(0.0, 40.0 + 1e-9, 0.02)
+shaking = {"time_s": time_s, "ax_m_s2": np.sin(time_s), "ay_m_s2": 0 * time_s, "az_m_s2": 0 * time_s}
+note = tank_figures.forced_record_note("sloshing", shaking, 20.0, 5.88)
+check("forced record of 3.4 cycles: a note", note is not None and "3.4" in note, str(note))
+still = dict(shaking, ax_m_s2=np.where(time_s < 16.0, np.sin(time_s), 0.0))
+check("record going on 24 s past the motion: no note",
+      tank_figures.forced_record_note("sloshing", still, 40.0, 5.88) is None)
+check("record of 100 cycles: no note", tank_figures.forced_record_note("bulging", shaking, 20.0, 0.2) is None)
 
 passed = sum(checks)
 print(f"{passed} passed, {len(checks) - passed} failed")
