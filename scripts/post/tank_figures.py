@@ -136,7 +136,7 @@ def identify_periods(run, ground, theory, bands=None):
     ends = {}  # the latest time of each kind's records
     for kind, name, time_s, values, feedthrough, quantity in period_records(run):
         if len(time_s):
-            ends[kind] = max(ends.get(kind, float(time_s[-1])), float(time_s[-1]))
+            ends[kind] = max(ends.get(kind, 0.0), float(time_s[-1]))
         entry = result[kind]["records"]
         period, factor = reference[kind]
         note = _resolution_note(time_s, period)
@@ -170,10 +170,9 @@ def identify_periods(run, ground, theory, bands=None):
         if best is None or estimate.period_std_s / estimate.period_s < best[1]["period_std_s"] / best[1]["period_s"]:
             result[kind]["best"] = (name, entry[name])
     for kind, entry in result.items():
-        entry["range"], note = records_agreement(kind, entry["records"])
-        for note in (note, forced_record_note(kind, ground, ends.get(kind), reference[kind][0])):
-            if note:
-                entry["notes"].append(note)
+        entry["range"], disagreement = records_agreement(kind, entry["records"])
+        forced = forced_record_note(kind, ground, ends.get(kind), reference[kind][0])
+        entry["notes"] += [note for note in (disagreement, forced) if note]
     return result
 
 
