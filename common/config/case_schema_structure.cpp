@@ -141,6 +141,16 @@ std::vector<KeySpec> structure_keys() {
                "PETSc options for the structural solve (prefix -shell_) and the eigensolver (-eps_, -st_), "
                "applied before the command line's.")
           .default_is("''"),
+      choice_key("structure.kinematics", {"linear", "corotational"},
+                 "Linear: small displacements (K u). Corotational: large rotations with small strains (each "
+                 "element's rigid motion taken out by a frame that follows it, Newton iterations in every step or "
+                 "load step; fem_solver/analysis/corotational_newmark.hpp) for a gate or plate that swings or "
+                 "bends far; static and dynamic analyses, not modal or a coupled added mass.")
+          .default_is("linear"),
+      integer_key("structure.load_steps",
+                  "Corotational static analysis: the load is applied in this many equal increments, each "
+                  "solved to equilibrium.")
+          .default_is("10").at_least(1).only_when("structure.analysis", {"static"}),
       integer_key("structure.modes", "Number of lowest natural modes a modal analysis computes.")
           .default_is("10").at_least(1).only_when("structure.analysis", {"modal", "dynamic"}),
       real_key("structure.time_step", "Structural time step of the Newmark integration.")

@@ -29,38 +29,11 @@
 // acceleration of initialise() then takes one solve with it.
 #include <memory>
 
-#include "fem_solver/analysis/rayleigh_damping.hpp"
-#include "fem_solver/assembly/linear_solve.hpp"
-#include "fem_solver/assembly/petsc_handle.hpp"
+#include "fem_solver/analysis/transient_integrator.hpp"
 
 namespace tankfsi::fem {
 
-/// Newmark's gamma and beta and the generalized-alpha weights alpha_m,
-/// alpha_f of the step (see above).
-struct TimeIntegrationRule {
-  double gamma = 0.5;
-  double beta = 0.25;
-  double alpha_m = 0.0;
-  double alpha_f = 0.0;
-
-  /// gamma = 1/2, beta = 1/4, alpha_m = alpha_f = 0: no numerical damping.
-  static TimeIntegrationRule average_acceleration() { return {}; }
-  /// Chung & Hulbert's optimal parameters for a spectral radius rho_inf in
-  /// [0, 1] at infinite frequency: alpha_m = (2 rho - 1)/(rho + 1), alpha_f =
-  /// rho/(rho + 1), gamma = 1/2 - alpha_m + alpha_f, beta = (1 - alpha_m +
-  /// alpha_f)^2 / 4. rho_inf = 1 is the average-acceleration rule itself
-  /// (returned as such: the same steps bit for bit). Throws
-  /// std::invalid_argument outside [0, 1].
-  static TimeIntegrationRule generalized_alpha(double spectral_radius);
-};
-
-/// A copy of the integrator's state (u, v, a and the K products carried
-/// with them): what an implicit coupling window rolls back to.
-struct NewmarkState {
-  PetscVector u, v, a, ku, kv, ka, f;  ///< f: the load at the state's time (generalized-alpha's F_n)
-};
-
-class NewmarkIntegrator {
+class NewmarkIntegrator final : public TransientIntegrator {
  public:
   /// K and the mass diagonal are kept by reference (PETSc reference counts);
   /// u, v start at zero and a from M a = F0 - K u - C v at the first step.
@@ -70,40 +43,41 @@ class NewmarkIntegrator {
   /// Sets the state at the current time; the acceleration follows from the
   /// equation of motion with the load `load` (M is diagonal: no solve; with
   /// an added mass one solve with M + M_a).
-  void initialise(Vec displacement, Vec velocity, Vec load);
+  void initialise(Vec displacement, Vec velocity, Vec load) override;
   /// The same for a new load at the current time, u and v kept: the load of
   /// a coupling window that jumps at its start. With K u and K v carried
   /// along (Rayleigh's beta_R or generalized alpha) it needs one product with
   /// K (K a) instead of initialise()'s four.
-  void set_load(Vec load);
+  void set_load(Vec load) override;
   /// Adds M_a (same layout as K; nullptr: none) to the inertia from the next
   /// step on; K_eff is factorised again. The matrix is kept by reference.
   /// `product` (nullptr: M_a itself) stands for M_a in the steps' products with
   /// it, `inertia` (nullptr: M + M_a assembled and factorised) for (M + M_a)^-1
   /// in the accelerations of initialise() and set_load(): the same operators
   /// in cheaper forms (normal_added_mass.hpp).
-  void set_added_mass(Mat added_mass, Mat product = nullptr, std::unique_ptr<LinearSolve> inertia = nullptr);
+  void set_added_mass(Mat added_mass, Mat product = nullptr,
+                      std::unique_ptr<LinearSolve> inertia = nullptr) override;
   /// Assembles and factorises K_eff for steps of dt now (step() does it on
   /// the first step of a new dt otherwise).
-  void prepare(double dt);
+  void prepare(double dt) override;
   /// Advances by dt to the load `load` at the end of the step. A step whose
   /// displacement is not finite throws std::runtime_error and leaves the state
   /// as it was (the last good one).
-  void step(double dt, Vec load);
+  void step(double dt, Vec load) override;
 
-  [[nodiscard]] Vec displacement() const { return u_.get(); }
-  [[nodiscard]] Vec velocity() const { return v_.get(); }
-  [[nodiscard]] Vec acceleration() const { return a_.get(); }
+  [[nodiscard]] Vec displacement() const override { return u_.get(); }
+  [[nodiscard]] Vec velocity() const override { return v_.get(); }
+  [[nodiscard]] Vec acceleration() const override { return a_.get(); }
   /// Copies the state into `state` (its vectors made on first use).
-  void save(NewmarkState& state) const;
+  void save(NewmarkState& state) const override;
   /// Sets the state back to a saved one.
-  void restore(const NewmarkState& state);
+  void restore(const NewmarkState& state) override;
   /// 1/2 v.M v + 1/2 u.K u (J): conserved by the undamped, unloaded rule.
-  [[nodiscard]] double energy() const;
-  [[nodiscard]] const RayleighCoefficients& damping() const { return damping_; }
-  [[nodiscard]] const TimeIntegrationRule& rule() const { return rule_; }
+  [[nodiscard]] double energy() const override;
+  [[nodiscard]] const RayleighCoefficients& damping() const override { return damping_; }
+  [[nodiscard]] const TimeIntegrationRule& rule() const override { return rule_; }
   /// Number of factorisations so far (one per distinct dt).
-  [[nodiscard]] int factorisations() const { return factorisations_; }
+  [[nodiscard]] int factorisations() const override { return factorisations_; }
 
  private:
   void factorise(double dt);

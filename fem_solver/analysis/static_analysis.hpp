@@ -15,4 +15,10 @@ struct StaticResult {
 /// Timed stages: shell_factorise, shell_solve.
 [[nodiscard]] StaticResult solve_static(StructureSystem& system, const LoadSet& loads);
 
+/// Large rotations (corotational_newmark.hpp): the loads applied in
+/// `load_steps` equal increments, each solved to equilibrium by Newton's
+/// method; `iterations` counts Newton's iterations over all of them.
+/// Throws std::runtime_error when an increment does not converge.
+[[nodiscard]] StaticResult solve_static_corotational(StructureSystem& system, const LoadSet& loads, int load_steps);
+
 }  // namespace tankfsi::fem

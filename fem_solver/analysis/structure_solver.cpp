@@ -19,15 +19,21 @@ Eigen::Vector3d translational_total(const NodalValues& values) {
 }  // namespace
 
 StructureSolver::StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
-                                 const GroundMotion& motion, TimeIntegrationRule rule)
-    : system_(system),
-      motion_(motion),
-      integrator_(
-          system.stiffness(), system.mass(), damping,
-          [&system](Mat m) -> std::unique_ptr<LinearSolve> { return system.make_solver(m); }, rule) {
+                                 const GroundMotion& motion, TimeIntegrationRule rule, Kinematics kinematics)
+    : system_(system), motion_(motion) {
+  if (kinematics == Kinematics::corotational) {
+    auto corotational = std::make_unique<CorotationalNewmark>(system, damping, rule);
+    corotational_ = corotational.get();
+    integrator_ = std::move(corotational);
+  } else {
+    integrator_ = std::make_unique<NewmarkIntegrator>(
+        system.stiffness(), system.mass(), damping,
+        [&system](Mat m) -> std::unique_ptr<LinearSolve> { return system.make_solver(m); }, rule);
+  }
   SystemAssembler& assembler = system_.assembler();
   constant_load_ = assemble_loads(assembler, constant_loads);
-  assembler.add_prescribed_lift(constant_load_.get());
+  // Co-rotational: prescribed displacements are in the nodal state itself.
+  if (!corotational_) assembler.add_prescribed_lift(constant_load_.get());
   petsc_check(VecAssemblyBegin(constant_load_.get()), "VecAssemblyBegin");
   petsc_check(VecAssemblyEnd(constant_load_.get()), "VecAssemblyEnd");
   constant_total_ = translational_total(nodal_loads(system_.model(), constant_loads));
@@ -44,7 +50,7 @@ StructureSolver::StructureSolver(StructureSystem& system, RayleighCoefficients d
   build_load(0.0);
   PetscVector zero = assembler.create_vector();
   petsc_check(VecSet(zero.get(), 0.0), "VecSet");
-  integrator_.initialise(zero.get(), zero.get(), load_.get());
+  integrator_->initialise(zero.get(), zero.get(), load_.get());
 }
 
 void StructureSolver::set_interface(InterfaceMesh interface) {
@@ -64,7 +70,7 @@ void StructureSolver::set_interface(InterfaceMesh interface) {
               "ISCreateGeneral");
   petsc_check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(free.size()), interface_gathered_.out()), "VecCreateSeq");
   const PetscErrorCode code =
-      VecScatterCreate(integrator_.displacement(), from, interface_gathered_.get(), nullptr, interface_scatter_.out());
+      VecScatterCreate(integrator_->displacement(), from, interface_gathered_.get(), nullptr, interface_scatter_.out());
   ISDestroy(&from);
   petsc_check(code, "VecScatterCreate");
 }
@@ -171,19 +177,24 @@ void StructureSolver::set_normal_added_mass(std::span<const double> matrix, std:
   petsc_check(MatAssemblyBegin(operator_matrix.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(operator_matrix.get(), MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   added_mass_product_ = make_normal_added_mass_product(normal_map.get(), operator_matrix.get());
-  integrator_.set_added_mass(added_mass_.get(), added_mass_product_.get(),
+  integrator_->set_added_mass(added_mass_.get(), added_mass_product_.get(),
                              make_normal_added_mass_inertia(normal_map.get(), matrix, system_.mass()));
 }
 
 void StructureSolver::balance_acceleration() {
   const auto stage = time_stage(system_.timers(), "shell_balance");
   build_load(time_);
-  integrator_.set_load(load_.get());
+  integrator_->set_load(load_.get());
   mark_state_changed();
 }
 
 void StructureSolver::start_at_equilibrium() {
   build_load(time_);
+  if (corotational_) {
+    corotational_->equilibrate(load_.get());
+    mark_state_changed();
+    return;
+  }
   PetscVector u = system_.assembler().create_vector();
   {
     const auto solver = system_.make_solver(system_.stiffness());
@@ -191,7 +202,7 @@ void StructureSolver::start_at_equilibrium() {
   }
   PetscVector zero = system_.assembler().create_vector();
   petsc_check(VecSet(zero.get(), 0.0), "VecSet");
-  integrator_.initialise(u.get(), zero.get(), load_.get());
+  integrator_->initialise(u.get(), zero.get(), load_.get());
   mark_state_changed();
 }
 
@@ -208,7 +219,7 @@ void StructureSolver::advance(double dt) {
   const auto stage = time_stage(system_.timers(), "shell_step");
   build_load(time_ + dt);
   try {
-    integrator_.step(dt, load_.get());
+    integrator_->step(dt, load_.get());
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("structure step " + std::to_string(steps_ + 1) + " to t = " + std::to_string(time_ + dt) +
                              " s failed: " + e.what());
@@ -219,13 +230,13 @@ void StructureSolver::advance(double dt) {
 }
 
 void StructureSolver::save(Checkpoint& checkpoint) const {
-  integrator_.save(checkpoint.state);
+  integrator_->save(checkpoint.state);
   checkpoint.time = time_;
   checkpoint.steps = steps_;
 }
 
 void StructureSolver::restore(const Checkpoint& checkpoint) {
-  integrator_.restore(checkpoint.state);
+  integrator_->restore(checkpoint.state);
   time_ = checkpoint.time;
   steps_ = checkpoint.steps;
   mark_state_changed();
@@ -244,15 +255,15 @@ const NodalValues& StructureSolver::gathered(GatheredState& state, Vec values, d
 // Displacements carry the prescribed values of constrained DOFs; velocities
 // and accelerations are zero there (prescribed displacements are constant).
 const NodalValues& StructureSolver::displacement() const {
-  return gathered(displacement_, integrator_.displacement(), 1.0);
+  return gathered(displacement_, integrator_->displacement(), 1.0);
 }
-const NodalValues& StructureSolver::velocity() const { return gathered(velocity_, integrator_.velocity(), 0.0); }
+const NodalValues& StructureSolver::velocity() const { return gathered(velocity_, integrator_->velocity(), 0.0); }
 const NodalValues& StructureSolver::acceleration() const {
-  return gathered(acceleration_, integrator_.acceleration(), 0.0);
+  return gathered(acceleration_, integrator_->acceleration(), 0.0);
 }
 
 double StructureSolver::largest_displacement() const {
-  return system_.assembler().largest_translation(integrator_.displacement(), 1.0);
+  return system_.assembler().largest_translation(integrator_->displacement(), 1.0);
 }
 
 std::vector<double> StructureSolver::interface_values(Vec values, double prescribed_scale) const {
@@ -276,16 +287,17 @@ std::vector<double> StructureSolver::interface_values(Vec values, double prescri
 }
 
 std::vector<double> StructureSolver::interface_displacements() const {
-  return interface_values(integrator_.displacement(), 1.0);
+  return interface_values(integrator_->displacement(), 1.0);
 }
-std::vector<double> StructureSolver::interface_velocities() const { return interface_values(integrator_.velocity(), 0.0); }
+std::vector<double> StructureSolver::interface_velocities() const { return interface_values(integrator_->velocity(), 0.0); }
 
 Eigen::Vector3d StructureSolver::total_external_force() const {
   return constant_total_ + external_total_ - free_mass_.cwiseProduct(motion_.acceleration(time_));
 }
 
 NodalValues StructureSolver::support_forces() const {
-  return system_.assembler().reactions(displacement(), velocity(), integrator_.damping().beta);
+  if (corotational_) return corotational_->support_forces();
+  return system_.assembler().reactions(displacement(), velocity(), integrator_->damping().beta);
 }
 
 }  // namespace tankfsi::fem

@@ -18,6 +18,7 @@
 #include <span>
 
 #include "common/excitation/ground_motion.hpp"
+#include "fem_solver/analysis/corotational_newmark.hpp"
 #include "fem_solver/analysis/load_set.hpp"
 #include "fem_solver/analysis/newmark.hpp"
 #include "fem_solver/analysis/structure_system.hpp"
@@ -25,11 +26,16 @@
 
 namespace tankfsi::fem {
 
+/// How the shell moves: linear (small displacements, f = K u) or
+/// co-rotational (large rotations, small strains; corotational_newmark.hpp).
+enum class Kinematics { linear, corotational };
+
 class StructureSolver {
  public:
   /// Starts at rest at t = 0 with the constant loads applied.
   StructureSolver(StructureSystem& system, RayleighCoefficients damping, const LoadSet& constant_loads,
-                  const GroundMotion& motion, TimeIntegrationRule rule = TimeIntegrationRule::average_acceleration());
+                  const GroundMotion& motion, TimeIntegrationRule rule = TimeIntegrationRule::average_acceleration(),
+                  Kinematics kinematics = Kinematics::linear);
 
   /// The interface the coupling exchanges (the same on every rank); sets up
   /// the scatter of its values to every rank. Collective.
@@ -51,11 +57,12 @@ class StructureSolver {
   /// does not see them as a jump over the first step.
   void balance_acceleration();
   /// Puts the structure at rest in static equilibrium with the loads now set,
-  /// K u = F(t): the state before a dynamic load (one factorisation of K).
+  /// K u = F(t) (co-rotational: f(u) = F(t) by Newton's method): the state
+  /// before a dynamic load.
   void start_at_equilibrium();
   /// Factorises K_eff for steps of dt ahead of the first advance (timed as
   /// shell_factorise rather than inside the first shell_step).
-  void prepare(double dt) { integrator_.prepare(dt); }
+  void prepare(double dt) { integrator_->prepare(dt); }
   /// One Newmark step to t + dt; throws std::runtime_error naming the time if
   /// the solve fails, and leaves the state at the last good step.
   void advance(double dt);
@@ -89,8 +96,10 @@ class StructureSolver {
   [[nodiscard]] Eigen::Vector3d total_external_force() const;
   /// Forces the structure puts on its supports (-K (u + beta v) there).
   [[nodiscard]] NodalValues support_forces() const;
-  [[nodiscard]] double energy() const { return integrator_.energy(); }
-  [[nodiscard]] const NewmarkIntegrator& integrator() const { return integrator_; }
+  [[nodiscard]] double energy() const { return integrator_->energy(); }
+  [[nodiscard]] const TransientIntegrator& integrator() const { return *integrator_; }
+  /// The co-rotational integrator, or null with linear kinematics.
+  [[nodiscard]] const CorotationalNewmark* corotational() const { return corotational_; }
 
  private:
   /// The whole structure's values of a distributed state vector, gathered once per step.
@@ -109,7 +118,8 @@ class StructureSolver {
 
   StructureSystem& system_;
   const GroundMotion& motion_;
-  NewmarkIntegrator integrator_;
+  std::unique_ptr<TransientIntegrator> integrator_;
+  CorotationalNewmark* corotational_ = nullptr;  ///< integrator_ when co-rotational
   PetscMatrix added_mass_;          ///< assembled: for K_eff's factorisation
   PetscMatrix added_mass_product_;  ///< the same through its factors: for products (normal_added_mass.hpp)
   PetscVector constant_load_;

@@ -35,6 +35,14 @@ StructureCase read_structure_case(const CaseConfig& config) {
   config.require_section("structure", "fem_solver");
   StructureCase c;
   c.analysis = config.text("structure.analysis");
+  c.corotational = config.text("structure.kinematics") == "corotational";
+  if (c.corotational && c.analysis == "static") c.load_steps = static_cast<int>(config.integer("structure.load_steps"));
+  // Natural modes belong to the linear system (a dynamic run still uses them for its Rayleigh damping).
+  if (c.corotational && c.analysis == "modal")
+    throw config.error_at("structure.kinematics", "a modal analysis is linear: use structure.kinematics: linear");
+  if (c.corotational && config.has("coupling.added_mass") && config.text("coupling.added_mass") != "none")
+    throw config.error_at("coupling.added_mass",
+                          "an added mass is not available with structure.kinematics: corotational");
   c.mesh = read_structure_mesh(config);
   c.sections = read_sections(config, c.mesh);
   c.drilling_factor = config.real("structure.drilling_stiffness");

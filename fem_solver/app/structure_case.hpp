@@ -30,6 +30,8 @@ struct DampingTarget {
 
 struct StructureCase {
   std::string analysis;  ///< static, modal, dynamic
+  bool corotational = false;  ///< structure.kinematics: corotational (large rotations)
+  int load_steps = 1;         ///< corotational static: load increments
   ShellMesh mesh;
   std::vector<ShellSection> sections;  ///< one per mesh region
   double drilling_factor = 1e-3;

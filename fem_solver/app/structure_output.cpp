@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include "common/parallel/collective.hpp"
+#include "fem_solver/analysis/corotational_forces.hpp"
 
 namespace tankfsi::fem {
 namespace {
@@ -35,7 +36,7 @@ StructureTotals support_totals(const ShellMesh& mesh, const NodalValues& support
 
 StructureOutput::StructureOutput(ProgramContext& context, const StructureCase& c, const StructureSystem& system,
                                  std::optional<double> resume_time)
-    : system_(system), probes_(c.probes),
+    : system_(system), corotational_(c.corotational), probes_(c.probes),
       writer_(context.comm, context.folder->path(), "structure", resume_time ? FileMode::append : FileMode::truncate,
               resume_time) {
   int rank = 0;
@@ -91,8 +92,9 @@ void StructureOutput::write_fields(double time, const NodalValues& displacement,
   }
   std::vector<double> membrane, bending, shear_1, shear_2, top, bottom;
   for (const std::size_t e : cell_elements_) {
-    const StressResultants r = element_stress_resultants(model.element_nodes(e), model.section_of(e),
-                                                         system_.assembler().element_values(e, displacement));
+    const Eigen::VectorXd deformation = corotational_ ? element_deformation(model, e, displacement)
+                                                      : system_.assembler().element_values(e, displacement);
+    const StressResultants r = element_stress_resultants(model.element_nodes(e), model.section_of(e), deformation);
     for (int k = 0; k < 3; ++k) {
       membrane.push_back(r.membrane(k));
       bending.push_back(r.bending(k));

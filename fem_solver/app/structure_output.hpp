@@ -34,6 +34,9 @@ class StructureOutput {
                   std::optional<double> resume_time = std::nullopt);
 
   /// One snapshot of the fields; `velocity` may be empty (static, modal).
+  /// Stress resultants come from each element's deformation: the
+  /// displacements themselves, or (co-rotational) what is left of them
+  /// after the element's rigid motion, in the element's rotated frame.
   void write_fields(double time, const NodalValues& displacement, const NodalValues& velocity);
   /// One row per probe and of probes/structure.csv.
   void sample(double time, const NodalValues& displacement, const NodalValues& velocity,
@@ -42,6 +45,7 @@ class StructureOutput {
 
  private:
   const StructureSystem& system_;
+  bool corotational_ = false;
   std::vector<StructureProbe> probes_;
   FieldSeriesWriter writer_;
   std::vector<std::int64_t> vertex_ids_;     ///< owned nodes, in file order

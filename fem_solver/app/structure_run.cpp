@@ -57,7 +57,8 @@ double largest_translation(const NodalValues& values) {
 }
 
 nlohmann::json run_static(ProgramContext& context, const StructureCase& c, StructureSystem& system) {
-  const StaticResult result = solve_static(system, c.loads);
+  const StaticResult result =
+      c.corotational ? solve_static_corotational(system, c.loads, c.load_steps) : solve_static(system, c.loads);
   StructureOutput output(context, c, system);
   StructureTotals totals = support_totals(system.model().mesh, result.reactions);
   const NodalValues applied = nodal_loads(system.model(), c.loads);
@@ -69,6 +70,7 @@ nlohmann::json run_static(ProgramContext& context, const StructureCase& c, Struc
   context.log.info("static: largest displacement ", largest_translation(result.displacement), " m (", result.solver, ")");
   nlohmann::json summary = model_summary(system, "static");
   summary["solver"] = result.solver;
+  summary["kinematics"] = c.corotational ? "corotational" : "linear";
   summary["probes"] = probe_values(c, result.displacement);
   summary["max_displacement_m"] = largest_translation(result.displacement);
   summary["external_force_N"] = {totals.external_force.x(), totals.external_force.y(), totals.external_force.z()};
@@ -136,7 +138,8 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   if (c.spectral_radius < 1.0)
     context.log.info("time integration: generalized alpha, rho_inf = ", c.spectral_radius, " (alpha_m = ", rule.alpha_m,
                      ", alpha_f = ", rule.alpha_f, ", gamma = ", rule.gamma, ", beta = ", rule.beta, ")");
-  StructureSolver solver(system, damping, c.loads, motion, rule);
+  StructureSolver solver(system, damping, c.loads, motion, rule,
+                         c.corotational ? Kinematics::corotational : Kinematics::linear);
   const bool wetted = system.model().mesh.element_sets.count("wetted") != 0;
   if (wetted) {
     // Wetted elements held fixed on every node (a bottom on its foundation)
@@ -293,6 +296,12 @@ nlohmann::json run_dynamic(ProgramContext& context, const StructureCase& c, Stru
   summary["spectral_radius"] = c.spectral_radius;
   summary["initial_state"] = context.config.text("structure.initial_state");
   summary["factorisations"] = solver.integrator().factorisations();
+  summary["kinematics"] = c.corotational ? "corotational" : "linear";
+  if (const CorotationalNewmark* corotational = solver.corotational()) {
+    // All of them, the steps of repeated coupling windows too.
+    summary["newton_iterations"] = corotational->newton_iterations();
+    summary["newton_iterations_most_in_a_step"] = corotational->most_newton_iterations();
+  }
   summary["seconds_per_step"] = seconds / static_cast<double>(std::max<long long>(solver.steps() - steps_before, 1));
   if (resumed) summary["restarted_at_s"] = checkpoint_restart_time;
   summary["rayleigh"] = {{"alpha_per_s", damping.alpha},

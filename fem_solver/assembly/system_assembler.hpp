@@ -65,8 +65,10 @@ class SystemAssembler {
   [[nodiscard]] const DofMap& dofs() const { return dofs_; }
   [[nodiscard]] MPI_Comm comm() const { return comm_; }
 
- private:
+  /// The equations of an element's 6n DOFs (-1 where constrained).
   [[nodiscard]] std::vector<PetscInt> element_equations(std::size_t element) const;
+
+ private:
   void preallocate(Mat matrix) const;
 
   MPI_Comm comm_;
