@@ -18,13 +18,14 @@
 //
 // Nodal variations are translations dx_i and spins dw_i (R_i -> exp([dw_i]x)
 // R_i, global axes). The internal force is f = J^T K_0 d, J = dd/d(dx, dw),
-// the gradient of the energy; J is taken by central differences of d (steps
-// 1e-6 of the element's size and 1e-6 rad: d's second derivatives are of
-// order 1 / size, so J is good to ~1e-10 relative, the rounding of d over
-// the step). Two tangents: the material part J^T K_0 J, symmetric and cheap,
+// the gradient of the energy; J in closed form (the spin of the frame from
+// the variations of its normal and in-plane direction, and the inverse left
+// Jacobian of the rotations for theta_d; checked against central differences
+// of d in the tests). Two tangents: the material part J^T K_0 J, symmetric and cheap,
 // which leaves out the geometric stiffness (dJ^T/dq K_0 d): enough where
 // inertia dominates (a time step's effective matrix); and the full tangent,
-// the central differences of f itself (48 evaluations of J), symmetrised:
+// the central differences of f itself (steps 1e-6 of the element's size and
+// 1e-6 rad, 48 evaluations of f; J exact, so f rounds at eps), symmetrised:
 // what a static equilibrium needs, where the geometric stiffness of the
 // element forces can be as large as the structure's own bending stiffness (a
 // long cantilever under a tip load) and Newton's method stalls without it.
@@ -56,7 +57,7 @@ class CorotationalElement {
   [[nodiscard]] Eigen::Matrix3d rigid_rotation(const ElementState& now) const;
   /// d (6n): deformational displacements and rotations in the initial axes.
   [[nodiscard]] Eigen::VectorXd deformation(const ElementState& now) const;
-  /// J = dd/d(dx, dw) (6n x 6n), central differences.
+  /// J = dd/d(dx, dw) (6n x 6n).
   [[nodiscard]] Eigen::MatrixXd deformation_jacobian(const ElementState& now) const;
 
   enum class Tangent { material, full };

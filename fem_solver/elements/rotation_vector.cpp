@@ -20,6 +20,16 @@ Eigen::Matrix3d rotation_matrix(const Eigen::Vector3d& psi) {
   return Eigen::Matrix3d::Identity() + s * k + c * (k * k);
 }
 
+Eigen::Matrix3d inverse_left_jacobian(const Eigen::Vector3d& psi) {
+  const double angle = psi.norm();
+  Eigen::Matrix3d k;
+  k << 0.0, -psi.z(), psi.y(), psi.z(), 0.0, -psi.x(), -psi.y(), psi.x(), 0.0;
+  // The coefficient's series, 1/12 + a^2/720, below 1e-3 rad (next term ~a^4/30240).
+  const double c = angle > 1e-3 ? 1.0 / (angle * angle) - (1.0 + std::cos(angle)) / (2.0 * angle * std::sin(angle))
+                                 : 1.0 / 12.0 + angle * angle / 720.0;
+  return Eigen::Matrix3d::Identity() - 0.5 * k + c * (k * k);
+}
+
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& r) {
   // sin(a) axis = vee(R - R^T)/2, cos(a) = (tr R - 1)/2.
   const Eigen::Vector3d sine_axis(0.5 * (r(2, 1) - r(1, 2)), 0.5 * (r(0, 2) - r(2, 0)), 0.5 * (r(1, 0) - r(0, 1)));

@@ -14,4 +14,9 @@ namespace tankfsi::fem {
 /// are the same rotation). R must be orthonormal with det 1.
 [[nodiscard]] Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& r);
 
+/// J_l^-1(psi): the change of psi for a small rotation xi applied on the left,
+/// exp([xi]x) exp([psi]x) = exp([psi + J_l^-1 xi]x) to first order in xi;
+/// I - [psi]x / 2 + (1/a^2 - (1 + cos a)/(2 a sin a)) [psi]x^2, a = |psi| < pi.
+[[nodiscard]] Eigen::Matrix3d inverse_left_jacobian(const Eigen::Vector3d& psi);
+
 }  // namespace tankfsi::fem
