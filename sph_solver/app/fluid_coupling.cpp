@@ -30,7 +30,7 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
   } catch (const std::invalid_argument& e) {
     throw context.config.error_at("coupling", e.what());
   }
-  solver.replace_walls(wall.mesh);
+  solver.replace_walls(wall.mesh, wall.two_sided_triangles);
   reference_ = solver.walls().mesh().vertices();
   coupled_ = wall.coupled;
   mapping_distance_ = wall.largest_distance;
@@ -54,6 +54,7 @@ FluidCoupling::FluidCoupling(ProgramContext& context, FluidSolver& solver, const
   }
   context.log.info("coupling: the structure's ", wall.interface_vertices, "-vertex wetted surface replaces ",
                    wall.replaced_triangles, " of the fluid's wall triangles", wall.flipped ? " (turned to face the liquid)" : "",
+                   wall.two_sided ? " (both faces of a thin wall: a two-sided sheet)" : "",
                    "; ", coupled_.size() - wall.interface_vertices, " junction vertices follow it (farthest ",
                    mapping_distance_, " m from it)");
   participant_.set_own_vertices(coupled_positions);

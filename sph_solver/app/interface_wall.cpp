@@ -83,7 +83,37 @@ InterfaceWall build_interface_wall(const TriangleMesh& own, const coupling::Inte
       wall.coupled.push_back(renumbered[v]);
       wall.largest_distance = std::max(wall.largest_distance, probe.distances()[v]);
     }
+  const std::size_t kept = triangles.size() - interface.triangles.size();
   wall.mesh = TriangleMesh(std::move(vertices), std::move(triangles));
+
+  // Both faces of a thin solid replaced: some replaced triangles face away
+  // from the interface triangle nearest them.
+  std::vector<Eigen::Vector3d> sheet_vertices(wall.mesh.vertices().begin() + first, wall.mesh.vertices().end());
+  std::vector<std::array<int, 3>> sheet_triangles;
+  for (std::size_t t = kept; t < wall.mesh.triangle_count(); ++t) {
+    auto tri = wall.mesh.triangles()[t];
+    for (int& v : tri) v -= first;
+    sheet_triangles.push_back(tri);
+  }
+  const TriangleMesh sheet(std::move(sheet_vertices), std::move(sheet_triangles));
+  const TriangleIndex sheet_index(sheet);
+  long long facing = 0, facing_away = 0;
+  for (std::size_t t = 0; t < own.triangle_count(); ++t) {
+    const auto& tri = own.triangles()[t];
+    if (!(on_interface[static_cast<std::size_t>(tri[0])] && on_interface[static_cast<std::size_t>(tri[1])] &&
+          on_interface[static_cast<std::size_t>(tri[2])]))
+      continue;
+    const Eigen::Vector3d centre = (own.corner(static_cast<int>(t), 0) + own.corner(static_cast<int>(t), 1) +
+                                    own.corner(static_cast<int>(t), 2)) / 3.0;
+    const auto hit = sheet_index.nearest(centre, 2.0 * tolerance);
+    if (!hit) continue;
+    ++(own.face_normals()[t].dot(sheet.face_normals()[static_cast<std::size_t>(hit->triangle)]) < -0.5 ? facing_away
+                                                                                                        : facing);
+  }
+  wall.two_sided = facing_away * 10 >= facing + facing_away && facing_away > 0;
+  wall.two_sided_triangles.assign(wall.mesh.triangle_count(), 0);
+  if (wall.two_sided) std::fill(wall.two_sided_triangles.begin() + static_cast<std::ptrdiff_t>(kept),
+                                wall.two_sided_triangles.end(), 1);
   return wall;
 }
 

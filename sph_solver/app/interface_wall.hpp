@@ -8,6 +8,12 @@
 // walls) stay. Where a kept triangle touches the wetted surface (the
 // junction at the liquid level, a corner) its vertices there follow the
 // structure through the nearest-projection mapping.
+//
+// Where the replaced triangles include both faces of a thin solid (at least a
+// tenth of them facing away from the interface as oriented: a gate or baffle
+// drawn in the fluid's walls as a plate thinner than L0, which the structure
+// models by its mid-surface) the interface is a sheet the liquid may wet on
+// both faces: its triangles are two-sided walls (wall_contacts.hpp).
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +31,8 @@ struct InterfaceWall {
   std::size_t replaced_triangles = 0;  ///< own triangles the interface replaced
   double largest_distance = 0.0;       ///< of a replaced or junction vertex from the interface
   bool flipped = false;                ///< the interface's triangles were turned to face the liquid
+  bool two_sided = false;              ///< the interface stands for both faces of a thin solid
+  std::vector<char> two_sided_triangles;  ///< per triangle of `mesh` (the interface's when two_sided)
 };
 
 /// Throws std::invalid_argument when no own triangle lies on the interface

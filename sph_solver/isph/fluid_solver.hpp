@@ -101,9 +101,10 @@ class FluidSolver {
                                                         std::span<const Eigen::Vector3d> normals);
 
   /// Replaces the walls before the first step (a coupled run's wall, whose
-  /// part on the structure's wetted surface is the structure's own mesh).
-  void replace_walls(TriangleMesh walls) {
-    walls_.replace_mesh(std::move(walls));
+  /// part on the structure's wetted surface is the structure's own mesh);
+  /// `two_sided`: per triangle, or empty (WallModel::replace_mesh).
+  void replace_walls(TriangleMesh walls, std::vector<char> two_sided = {}) {
+    walls_.replace_mesh(std::move(walls), std::move(two_sided));
     wall_force_.assign(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
   }
   /// Moves the walls (a coupled, deforming structure): every wall vertex's

@@ -41,6 +41,7 @@ Eigen::Vector3d smooth_normal(const WallCornerValues& corners, int t, const Eige
   if (dimension == 2) normal.z() = 0.0;
   if (!(normal.norm() > 0.5)) return plane;  // corners on opposite walls: cannot happen on a manifold mesh
   normal.normalize();
+  if (normal.dot(plane) < 0.0) normal = -normal;  // the back of a two-sided sheet
   return (normal - plane).squaredNorm() < 1e-24 ? plane : normal;
 }
 
@@ -57,7 +58,10 @@ WallModel::WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& k
   update_curvature();
 }
 
-void WallModel::replace_mesh(TriangleMesh mesh) {
+void WallModel::replace_mesh(TriangleMesh mesh, std::vector<char> two_sided) {
+  if (!two_sided.empty() && two_sided.size() != mesh.triangle_count())
+    throw std::invalid_argument("WallModel::replace_mesh: one two-sided flag per triangle is needed");
+  two_sided_ = std::move(two_sided);
   *mesh_ = std::move(mesh);  // the same object: the index keeps pointing to it
   index_.rebuild();
   velocities_.assign(mesh_->vertex_count(), Eigen::Vector3d::Zero());
@@ -123,8 +127,8 @@ double taper(double s) { return s >= 1.0 ? 0.0 : (1.0 - s) * (1.0 - s) * (1.0 + 
 
 /// The contact of one wall from its hits, blended as find_wall_contacts describes.
 WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& hits,
-                            const std::vector<std::pair<Eigen::Vector3d, double>>& planes, const WallSeen& wall,
-                            int dimension, double band) {
+                            const std::vector<std::pair<Eigen::Vector3d, double>>& planes,
+                            const std::vector<char>& from_behind, const WallSeen& wall, int dimension, double band) {
   const auto distance = [&hits, &wall](int f) {
     return std::sqrt(hits[wall.hits[static_cast<std::size_t>(f)]].closest.squared_distance);
   };
@@ -153,7 +157,9 @@ WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& 
     foot.weight /= total;
     const Eigen::Vector3d& plane = planes[wall.hits[at(f)]].first;
     normal += foot.weight * smooth_normal(walls.corner_values(), foot.triangle, foot.barycentric, plane, dimension);
-    curvature += foot.weight * walls.corner_values().curvature_at(foot.triangle, foot.barycentric);
+    // Seen from behind, a wall that bulges towards the front is hollow.
+    const double sign = from_behind[wall.hits[at(f)]] ? -1.0 : 1.0;
+    curvature += sign * foot.weight * walls.corner_values().curvature_at(foot.triangle, foot.barycentric);
   }
   contact.normal = contact.foot_count == 1 ? wall.normal : normal.normalized();
   contact.distance = wall.height <= 0.0 ? 0.0 : nearest;
@@ -179,6 +185,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   const double blend_band = wall_foot_blend_band * walls.table().spacing();
   std::vector<WallHit> hits;
   std::vector<std::pair<Eigen::Vector3d, double>> planes;
+  std::vector<char> from_behind;
   std::vector<WallSeen> walls_seen;
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Eigen::Vector3d& x = positions[i];
@@ -198,10 +205,18 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
              (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);
     });
     // Each hit's plane normal (zero: not a wall of the plane) and the particle's height over it.
+    // A two-sided triangle seen from behind, the particle right behind it (not
+    // beside it: its sheet's free edge, or the rest of the sheet), turns round.
     planes.clear();
+    from_behind.clear();
     for (const WallHit& hit : hits) {
-      const Eigen::Vector3d normal = wall_plane_normal(mesh, hit.triangle, dimension);
-      planes.push_back({normal, (x - hit.closest.point).dot(normal)});
+      Eigen::Vector3d normal = wall_plane_normal(mesh, hit.triangle, dimension);
+      double height = (x - hit.closest.point).dot(normal);
+      const bool behind = height < 0.0 && walls.two_sided(hit.triangle) &&
+                          (x - hit.closest.point - height * normal).norm() <= beside_tolerance;
+      if (behind) normal = -normal, height = -height;
+      planes.push_back({normal, height});
+      from_behind.push_back(behind ? 1 : 0);
     }
     const auto first_contact = result.contacts.size();
     walls_seen.clear();
@@ -214,11 +229,14 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
         // Behind the plane: touching if it crossed the triangle itself by a little.
         // Beside the triangle and in front of another wall it is round a convex edge
         // of the solid (flowing over a plate's top, below the top face's plane).
+        // Beside a two-sided sheet (its free edge or the rest of it) it is round
+        // the sheet's edge: a sheet has no inside to have crossed into.
         const double beside = (x - hit.closest.point - height * normal).norm();
         const bool round_convex_edge =
-            beside > beside_tolerance && std::any_of(planes.begin(), planes.end(), [&normal](const auto& other) {
-              return other.second > 0.0 && other.first.dot(normal) <= same_wall_cosine;
-            });
+            beside > beside_tolerance &&
+            (walls.two_sided(hit.triangle) || std::any_of(planes.begin(), planes.end(), [&normal](const auto& other) {
+               return other.second > 0.0 && other.first.dot(normal) <= same_wall_cosine;
+             }));
         if (height < -crossing_tolerance || round_convex_edge) continue;
       }
       const auto same_wall = std::find_if(walls_seen.begin(), walls_seen.end(), [&normal](const WallSeen& w) {
@@ -236,7 +254,7 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
       walls_seen.push_back(wall);
     }
     for (const WallSeen& wall : walls_seen)
-      result.contacts.push_back(blended_contact(walls, hits, planes, wall, dimension, blend_band));
+      result.contacts.push_back(blended_contact(walls, hits, planes, from_behind, wall, dimension, blend_band));
     result.offsets.push_back(static_cast<int>(result.contacts.size()));
     // Corners: orthogonal pairs of the particle's walls overlap behind both.
     const auto contacts = std::span<const WallContact>(result.contacts).subspan(first_contact);

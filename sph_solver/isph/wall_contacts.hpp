@@ -30,6 +30,15 @@
 // wall through the liquid itself. (Behind every wall near it, beside a facet —
 // just outside a faceted cylinder, say — it has crossed, and touches.)
 //
+// Two-sided triangles (WallModel::two_sided: a coupled sheet, such as an elastic
+// gate, that the liquid may wet on both faces) are walls from behind too: a
+// particle right behind a triangle (its closest point the foot of its
+// perpendicular) sees it with the normal turned round (and the curvature's
+// sign); behind a triangle's plane and beside it (the sheet's other triangles,
+// or its free edge) it is round the sheet's edge, as round a convex edge above,
+// never touching: a sheet has no inside to have been crossed into (a path
+// through it is caught at the step's end, wall_crossings.hpp).
+//
 // Curvature: the flat-wall tables count virtual particles in layers parallel to the
 // wall. Behind a curved wall a layer at depth s has the area of the surface times
 // (1 - 2 H s) to first order (H the mean curvature, positive where the wall bulges
@@ -60,7 +69,8 @@ namespace tankfsi::sph {
 
 class WallModel {
  public:
-  /// The mesh's normals must point to the fluid. Walls start at rest.
+  /// The mesh's normals must point to the fluid. Walls start at rest,
+  /// one-sided.
   WallModel(TriangleMesh mesh, const FluidModel& model, const Kernel& kernel);
   WallModel(const WallModel&) = delete;
   WallModel& operator=(const WallModel&) = delete;
@@ -79,7 +89,12 @@ class WallModel {
   void move(std::span<const Eigen::Vector3d> positions, std::span<const Eigen::Vector3d> velocities);
   /// Replaces the whole wall (a coupled run's, build_interface_wall): new
   /// topology, at rest; the kernel tables stay (they depend on the kernel only).
-  void replace_mesh(TriangleMesh mesh);
+  /// `two_sided`: one flag per triangle (empty: all one-sided).
+  void replace_mesh(TriangleMesh mesh, std::vector<char> two_sided = {});
+  /// Whether triangle t is a wall from both faces (see above).
+  [[nodiscard]] bool two_sided(int t) const {
+    return !two_sided_.empty() && two_sided_[static_cast<std::size_t>(t)] != 0;
+  }
 
  private:
   void update_curvature();
@@ -92,6 +107,7 @@ class WallModel {
   std::vector<double> curvature_;  ///< per vertex, NaN where not resolvable (scratch of update_curvature)
   WallCornerValues corner_values_;
   std::vector<Eigen::Vector3d> velocities_;
+  std::vector<char> two_sided_;  ///< per triangle, or empty: none
 };
 
 /// A closest point of a wall: a triangle and the barycentric coordinates of the

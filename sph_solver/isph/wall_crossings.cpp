@@ -35,7 +35,9 @@ WallCrossings return_to_walls(const WallModel& walls, int dimension, std::span<c
     int t = crossed_triangle(walls, start[i], position[i]);
     // One wall at a time: a particle in a corner may have passed two or three.
     for (int wall = 0; t >= 0 && wall < 3; ++wall) {
-      const Eigen::Vector3d normal = wall_plane_normal(mesh, t, dimension);
+      Eigen::Vector3d normal = wall_plane_normal(mesh, t, dimension);
+      // A two-sided sheet's liquid side is the one the path came from.
+      if (walls.two_sided(t) && (start[i] - mesh.corner(t, 0)).dot(normal) < 0.0) normal = -normal;
       const double depth = (mesh.corner(t, 0) - position[i]).dot(normal);
       // In front of the plane the path came from behind it; too deep, it went through.
       if (normal.squaredNorm() == 0.0 || !(depth >= 0.0 && depth <= deepest)) break;

@@ -9,7 +9,8 @@
 // running up a wall at the free surface's pressure, which nothing but the
 // no-penetration condition keeps in. That condition is then imposed on the
 // particle itself, as polygon-wall particle methods do: it is put back on the
-// wall's liquid side (a thousandth of L0 in front of the plane) and loses its
+// wall's liquid side (a two-sided sheet's: the side the path came from; a
+// thousandth of L0 in front of the plane) and loses its
 // velocity into the wall relative to the wall's own (an inelastic contact). The
 // steps report how many particles they put back. A deeper crossing is a step
 // too long for the liquid's speed or the wall's motion: an error

@@ -17,6 +17,7 @@
 #include "sph_solver/walls/primitive_meshes.hpp"
 #include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
+#include "tests/unit/sph/two_sided_sheet.hpp"
 
 using namespace tankfsi::sph;
 using Eigen::Vector3d;
@@ -164,4 +165,37 @@ TEST_CASE("inside a faceted cylinder the contact changes continuously across two
   // In the middle of a facet, far from its edges, the nearest triangle alone.
   const WallContacts middle = find_wall_contacts(walls, std::vector<Vector3d>{Vector3d(0.97 * std::cos(0.098), 0.97 * std::sin(0.098), z)}, 3);
   for (const WallContact& c : middle.of(0)) CHECK(c.foot_count == 1);
+}
+
+TEST_CASE("a two-sided sheet is a wall from behind, except beside its free edge", "[wall_geometry]") {
+  // The sheet faces -x; flagged two-sided, a particle at x > 0.3 sees it with +x.
+  const FluidModel model = tankfsi::test::water();  // L0 = 0.02 m
+  const Kernel kernel(model.kernel, 2, model.smoothing_length);
+  WallModel walls(tankfsi::test::vertical_sheet(10), model, kernel);
+  const std::vector<Vector3d> x{
+      {0.290, 0.30, 0.0},  // 1 cm in front
+      {0.315, 0.30, 0.0},  // 1.5 cm behind (deeper than L0/2)
+      {0.305, 0.08, 0.0},  // behind the plane, below the free edge (closest point on it)
+  };
+  const WallContacts one_sided = find_wall_contacts(walls, x, 2);
+  REQUIRE(one_sided.of(0).size() == 1);
+  CHECK(one_sided.of(0)[0].normal.isApprox(Vector3d(-1, 0, 0), 1e-12));
+  CHECK(one_sided.of(1).empty());  // it would have crossed the wall
+
+  walls.replace_mesh(tankfsi::test::vertical_sheet(10),
+                     std::vector<char>(walls.mesh().triangle_count(), 1));
+  const WallContacts two_sided = find_wall_contacts(walls, x, 2);
+  REQUIRE(two_sided.of(0).size() == 1);
+  CHECK(two_sided.of(0)[0].normal.isApprox(Vector3d(-1, 0, 0), 1e-12));
+  CHECK(two_sided.of(0)[0].distance == Approx(0.01).epsilon(1e-9));
+  REQUIRE(two_sided.of(1).size() == 1);
+  CHECK(two_sided.of(1)[0].normal.isApprox(Vector3d(1, 0, 0), 1e-12));
+  CHECK(two_sided.of(1)[0].distance == Approx(0.015).epsilon(1e-9));
+  // The same table values as a particle as far in front (the sheet is flat).
+  CHECK(two_sided.of(1)[0].values.z0 == Approx(walls.table().at(0.015).z0).epsilon(1e-12));
+  // Below the free edge and behind the plane: round the sheet's edge, no contact
+  // (one-sided, it touched the sheet at distance 0, having crossed it by 0.5 cm < L0/2).
+  CHECK(two_sided.of(2).empty());
+  REQUIRE(one_sided.of(2).size() == 1);
+  CHECK(one_sided.of(2)[0].distance == 0.0);
 }

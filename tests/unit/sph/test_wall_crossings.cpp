@@ -16,6 +16,7 @@
 #include "sph_solver/isph/wall_crossings.hpp"
 #include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
+#include "tests/unit/sph/two_sided_sheet.hpp"
 
 using namespace tankfsi::sph;
 using Eigen::Vector3d;
@@ -109,4 +110,24 @@ TEST_CASE("a step that carries a particle a little past the floor puts it back a
     CHECK(after.position[i].y() > 0.0);
     if (after.id[i] == id) CHECK(after.velocity[i].y() >= 0.0);
   }
+}
+
+TEST_CASE("a particle through a two-sided sheet goes back to the side it came from", "[wall_crossings]") {
+  // The sheet at x = 0.3 faces -x; its back (x > 0.3) is liquid too when it is two-sided.
+  const FluidModel model = tankfsi::test::water();
+  const Kernel kernel(model.kernel, 2, model.smoothing_length);
+  WallModel walls(tankfsi::test::vertical_sheet(10), model, kernel);
+  walls.replace_mesh(tankfsi::test::vertical_sheet(10), std::vector<char>(walls.mesh().triangle_count(), 1));
+  const double l0 = model.spacing;
+  const std::vector<Vector3d> start{{0.31, 0.30, 0}, {0.29, 0.20, 0}};
+  std::vector<Vector3d> position{{0.3 - 0.2 * l0, 0.30, 0}, {0.3 + 0.2 * l0, 0.21, 0}};
+  std::vector<Vector3d> velocity{{-2, 1, 0}, {3, 0.5, 0}};
+  const WallCrossings crossings = return_to_walls(walls, 2, start, position, velocity);
+  CHECK(crossings.returned == 2);
+  CHECK(crossings.through.empty());
+  // From behind: back behind (x > 0.3); from the front: back in front.
+  CHECK(position[0].x() == Approx(0.3 + 1e-3 * l0).epsilon(1e-12));
+  CHECK(velocity[0].isApprox(Vector3d(0, 1, 0), 1e-12));
+  CHECK(position[1].x() == Approx(0.3 - 1e-3 * l0).epsilon(1e-12));
+  CHECK(velocity[1].isApprox(Vector3d(0, 0.5, 0), 1e-12));
 }
