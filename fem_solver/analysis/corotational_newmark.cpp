@@ -93,13 +93,10 @@ void CorotationalNewmark::prepare(double dt) {
 void CorotationalNewmark::step(double dt, Vec load) {
   prepare(dt);
   const double gamma = rule_.gamma;
-  const double beta = rule_.beta;
   const double am = rule_.alpha_m;
   const double af = rule_.alpha_f;
-  const double a0 = 1.0 / (beta * dt * dt);
-  const double a1 = gamma / (beta * dt);
-  const double a2 = 1.0 / (beta * dt);
-  const double a3 = 1.0 / (2.0 * beta) - 1.0;
+  const auto [a0, a1, a2, a3, a4, a5] = rule_.step_coefficients(dt);
+  (void)a4, (void)a5;  // the velocity's update below uses gamma directly
   const double alpha = damping_.alpha;
   // Predictor: the acceleration held, D = dt v + dt^2/2 a.
   petsc_check(VecAXPBYPCZ(increment_.get(), dt, 0.5 * dt * dt, 0.0, v_.get(), a_.get()), "VecAXPBYPCZ");

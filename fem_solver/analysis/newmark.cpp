@@ -120,13 +120,7 @@ void NewmarkIntegrator::prepare(double dt) {
 void NewmarkIntegrator::step(double dt, Vec load) {
   prepare(dt);
   const double gamma = rule_.gamma;
-  const double beta = rule_.beta;
-  const double a0 = 1.0 / (beta * dt * dt);
-  const double a1 = gamma / (beta * dt);
-  const double a2 = 1.0 / (beta * dt);
-  const double a3 = 1.0 / (2.0 * beta) - 1.0;
-  const double a4 = gamma / beta - 1.0;
-  const double a5 = dt / 2.0 * (gamma / beta - 2.0);
+  const auto [a0, a1, a2, a3, a4, a5] = rule_.step_coefficients(dt);
   const double alpha = damping_.alpha;
   const double beta_r = damping_.beta;
   // Generalized alpha, divided by (1 - alpha_f): the inertia terms carry c_m =

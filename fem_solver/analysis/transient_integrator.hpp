@@ -28,6 +28,17 @@ struct TimeIntegrationRule {
   /// (returned as such: the same steps bit for bit). Throws
   /// std::invalid_argument outside [0, 1].
   static TimeIntegrationRule generalized_alpha(double spectral_radius);
+
+  /// Newmark's step coefficients for a step dt: a_{n+1} = a0 (u_{n+1} - u_n)
+  /// - a2 v_n - a3 a_n, and a1 = gamma/(beta dt), a4 = gamma/beta - 1,
+  /// a5 = dt/2 (gamma/beta - 2) of the velocity's update written the same way.
+  struct StepCoefficients {
+    double a0, a1, a2, a3, a4, a5;
+  };
+  [[nodiscard]] StepCoefficients step_coefficients(double dt) const {
+    return {1.0 / (beta * dt * dt), gamma / (beta * dt), 1.0 / (beta * dt), 1.0 / (2.0 * beta) - 1.0,
+            gamma / beta - 1.0, dt / 2.0 * (gamma / beta - 2.0)};
+  }
 };
 
 /// A copy of the integrator's state: what an implicit coupling window rolls

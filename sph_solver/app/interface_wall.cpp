@@ -22,11 +22,12 @@ InterfaceWall build_interface_wall(const TriangleMesh& own, const coupling::Inte
   std::vector<int> renumbered(own.vertex_count(), -1);
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> triangles;
+  std::vector<int> replaced_own;  // the own triangles the interface replaces
   for (const auto& tri : own.triangles()) {
     const bool replaced = on_interface[static_cast<std::size_t>(tri[0])] && on_interface[static_cast<std::size_t>(tri[1])] &&
                           on_interface[static_cast<std::size_t>(tri[2])];
     if (replaced) {
-      ++wall.replaced_triangles;
+      replaced_own.push_back(static_cast<int>(&tri - own.triangles().data()));
       for (const int v : tri) wall.largest_distance = std::max(wall.largest_distance, probe.distances()[static_cast<std::size_t>(v)]);
       continue;
     }
@@ -41,6 +42,7 @@ InterfaceWall build_interface_wall(const TriangleMesh& own, const coupling::Inte
     }
     triangles.push_back(t);
   }
+  wall.replaced_triangles = replaced_own.size();
   if (wall.replaced_triangles == 0)
     throw std::invalid_argument("no wall triangle of the fluid lies within " + std::to_string(tolerance) +
                                 " m of the structure's wetted surface: do both programs model the same tank in the "
@@ -98,16 +100,11 @@ InterfaceWall build_interface_wall(const TriangleMesh& own, const coupling::Inte
   const TriangleMesh sheet(std::move(sheet_vertices), std::move(sheet_triangles));
   const TriangleIndex sheet_index(sheet);
   long long facing = 0, facing_away = 0;
-  for (std::size_t t = 0; t < own.triangle_count(); ++t) {
-    const auto& tri = own.triangles()[t];
-    if (!(on_interface[static_cast<std::size_t>(tri[0])] && on_interface[static_cast<std::size_t>(tri[1])] &&
-          on_interface[static_cast<std::size_t>(tri[2])]))
-      continue;
-    const Eigen::Vector3d centre = (own.corner(static_cast<int>(t), 0) + own.corner(static_cast<int>(t), 1) +
-                                    own.corner(static_cast<int>(t), 2)) / 3.0;
+  for (const int t : replaced_own) {
+    const Eigen::Vector3d centre = (own.corner(t, 0) + own.corner(t, 1) + own.corner(t, 2)) / 3.0;
     const auto hit = sheet_index.nearest(centre, 2.0 * tolerance);
     if (!hit) continue;
-    ++(own.face_normals()[t].dot(sheet.face_normals()[static_cast<std::size_t>(hit->triangle)]) < -0.5 ? facing_away
+    ++(own.face_normals()[static_cast<std::size_t>(t)].dot(sheet.face_normals()[static_cast<std::size_t>(hit->triangle)]) < -0.5 ? facing_away
                                                                                                         : facing);
   }
   wall.two_sided = facing_away * 10 >= facing + facing_away && facing_away > 0;
