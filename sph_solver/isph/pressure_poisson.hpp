@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sph_solver/isph/particle_terms.hpp"
@@ -71,6 +72,8 @@ class PressurePoisson {
   [[nodiscard]] std::string settings() const;
 
  private:
+  /// Orders the last row of the CSR buffers (from `begin`) by column.
+  void sort_row(std::size_t begin);
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   int solved_size_ = -1;  ///< local rows of the last solve
