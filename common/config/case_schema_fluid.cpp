@@ -46,7 +46,8 @@ std::vector<KeySpec> fluid_keys() {
                "condition P = 0 itself is imposed on the surface plane beyond them.")
           .default_is("0.97").above(0).below(1),
       text_key("fluid.ppe.solver_options",
-               "PETSc options for the pressure solver (prefix -ppe_), applied before the command line's.")
+               "PETSc options for the pressure solver (prefix -ppe_; without them CG with hypre BoomerAMG, "
+               "-ppe_ksp_rtol 1e-6), applied before the command line's.")
           .default_is("''"),
       boolean_key("fluid.shifting.enabled", "Fickian particle shifting (Lind et al. 2012).").default_is("true"),
       real_key("fluid.shifting.coefficient", "Shifting coefficient A of D = A h |v| dt.")

@@ -2,7 +2,7 @@
 // PressurePoisson: the pressure Poisson equation of the projection step (METHOD.md
 // §1 step 2, eq 6), assembled as a distributed PETSc matrix and solved with a KSP
 // whose options carry the prefix -ppe_ (default: CG with hypre BoomerAMG in a
-// cheap hierarchy, rtol 1e-8, warm started from the previous pressure).
+// cheap hierarchy, rtol 1e-6, warm started from the previous pressure).
 //
 // Row of a particle i inside the liquid (the Laplacian with the factor 2):
 //   sum_j a_ij (P_i - P_j) = S_i - sum_w 2 Z2 (dP/dn)_w (r_iw + d2),
