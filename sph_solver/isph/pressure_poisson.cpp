@@ -23,6 +23,11 @@ void check(PetscErrorCode code, const char* what) {
 
 PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options) : comm_(comm) {
   tankfsi::apply_default_petsc_options(case_options);
+  create_solver();
+}
+
+void PressurePoisson::create_solver() {
+  if (ksp_ != nullptr) KSPDestroy(&ksp_);
   check(KSPCreate(comm_, &ksp_), "KSPCreate");
   check(KSPSetOptionsPrefix(ksp_, "ppe_"), "KSPSetOptionsPrefix");
   check(KSPSetType(ksp_, KSPCG), "KSPSetType");
@@ -158,14 +163,13 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 
-  // Particles migrate and leave: the local size changes between steps, which a
-  // KSP only accepts after a reset (its options and type are kept). The reset is
-  // collective and the operator's global size changes with any rank's: all ranks
-  // reset when one rank's size changed (a particle lost on rank 1 only left rank 0
-  // with a KSP of the old global size: "Nonconforming object sizes").
-  int changed = owned != solved_size_ ? 1 : 0;
-  MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_);
-  if (changed != 0) check(KSPReset(ksp_), "KSPReset");
+  // Every step's operator is a new matrix of another pattern, and often of
+  // another size (particles migrate and leave): a new solver takes it, with
+  // the same options. A KSP refuses a new local size without a reset, and
+  // GAMG, reset or not, kept coarse levels sized for the old pattern ("Cannot
+  // change local size of Amat after use", on some ranks only). BoomerAMG
+  // builds its hierarchy anew every step either way.
+  create_solver();
   solved_size_ = owned;
   check(KSPSetOperators(ksp_, matrix, matrix), "KSPSetOperators");
 }
@@ -197,6 +201,8 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
   check(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_iterations), "KSPGetTolerances");
   const bool floored = residual_floor > atol;
   if (floored) check(KSPSetTolerances(ksp_, rtol, residual_floor, dtol, max_iterations), "KSPSetTolerances");
+  // Not handled: an error raised on some ranks only leaves the others inside
+  // the solve's collectives (the job hangs); convergence failures are collective.
   const PetscErrorCode solve_code = KSPSolve(ksp_, rhs, solution);
   if (floored) check(KSPSetTolerances(ksp_, rtol, atol, dtol, max_iterations), "KSPSetTolerances");
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;

@@ -72,6 +72,8 @@ class PressurePoisson {
   [[nodiscard]] std::string settings() const;
 
  private:
+  /// A new KSP from the options (the case's, the command line's, the defaults).
+  void create_solver();
   /// Orders the last row of the CSR buffers (from `begin`) by column.
   void sort_row(std::size_t begin);
   MPI_Comm comm_;

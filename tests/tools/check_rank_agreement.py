@@ -10,7 +10,7 @@ force that should be zero is round-off, compared with the forces that are not).
 The PPE iteration count is not compared: hypre's multigrid hierarchy depends on
 the partition, so the count may differ by one. Why not bit-for-bit: the ranks sum a particle's neighbours in another
 order, so sums differ in the last bits and the PPE's iterative solve converges to
-1e-8 from another start; over a short run of a calm flow these differences stay
+its tolerance from another start; over a short run of a calm flow these differences stay
 far below 1e-6.
 """
 import argparse
