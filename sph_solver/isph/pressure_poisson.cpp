@@ -2,7 +2,6 @@
 
 #include "common/run/petsc_defaults.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>

@@ -26,7 +26,6 @@
 #include <cstdint>
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "sph_solver/isph/particle_terms.hpp"
