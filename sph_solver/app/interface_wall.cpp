@@ -104,8 +104,9 @@ InterfaceWall build_interface_wall(const TriangleMesh& own, const coupling::Inte
     const Eigen::Vector3d centre = (own.corner(t, 0) + own.corner(t, 1) + own.corner(t, 2)) / 3.0;
     const auto hit = sheet_index.nearest(centre, 2.0 * tolerance);
     if (!hit) continue;
-    ++(own.face_normals()[static_cast<std::size_t>(t)].dot(sheet.face_normals()[static_cast<std::size_t>(hit->triangle)]) < -0.5 ? facing_away
-                                                                                                        : facing);
+    const double alignment =
+        own.face_normals()[static_cast<std::size_t>(t)].dot(sheet.face_normals()[static_cast<std::size_t>(hit->triangle)]);
+    ++(alignment < -0.5 ? facing_away : facing);
   }
   wall.two_sided = facing_away * 10 >= facing + facing_away && facing_away > 0;
   wall.two_sided_triangles.assign(wall.mesh.triangle_count(), 0);

@@ -33,10 +33,9 @@ void PressurePoisson::create_solver() {
   PC pc = nullptr;
   check(KSPGetPC(ksp_, &pc), "KSPGetPC");
   check(PCSetType(pc, PCHYPRE), "PCSetType");
-  // rtol 1e-6 (of the preconditioned right-hand side's norm, which BoomerAMG
-  // makes close to the pressure's): errors of ~1e-6 of the pressure, far below
-  // the discretisation's. Against 1e-8 (the default until 2026-12-04) the dam
-  // break's front and kinetic energy agree to five digits until the impact,
+  // rtol 1e-6 (of the preconditioned right-hand side's norm, CG's default
+  // test). Against 1e-8 (the default until 2026-12-04) the dam break's front
+  // and kinetic energy agree to five digits until the impact,
   // with 6.8 instead of 9.9 iterations a step and 11-17 % less wall time
   // (cases/dam_break_2d/README.md).
   check(KSPSetTolerances(ksp_, 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");

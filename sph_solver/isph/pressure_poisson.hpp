@@ -77,7 +77,7 @@ class PressurePoisson {
   void sort_row(std::size_t begin);
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
-  int solved_size_ = -1;  ///< local rows of the last solve
+  int solved_size_ = -1;  ///< local rows of the assembled operator
   Mat matrix_ = nullptr;  ///< the last assembled operator
   std::vector<unsigned char> dirichlet_;  ///< its Dirichlet rows (owned)
   // Assembly buffers, reused from step to step: the rows in CSR form (global
