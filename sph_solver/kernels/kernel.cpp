@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -177,21 +178,52 @@ double Kernel::derivative(double r) const {
   return 0.0;
 }
 
+namespace {
+
+// W and dW/dr of each radius, for one shape: the type is chosen once for a whole
+// neighbour list rather than once per pair, and the loop body inlines.
+template <class ShapeAndSlope>
+void kernel_values(std::span<const double> radii, std::span<double> values, std::span<double> slopes,
+                   double support_radius, double inverse_smoothing_length, double value_factor,
+                   double derivative_factor, ShapeAndSlope shape_and_slope) {
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    double w = 0.0;
+    double slope = 0.0;
+    // Compare r itself with the support: q = r/h rounds, and could fall a hair inside it.
+    if (radii[k] < support_radius) shape_and_slope(radii[k] * inverse_smoothing_length, w, slope);
+    values[k] = w * value_factor;
+    slopes[k] = slope * derivative_factor;
+  }
+}
+
+}  // namespace
+
 void Kernel::value_and_derivative(double r, double& value, double& slope) const {
-  value = 0.0;
-  slope = 0.0;
-  if (r >= support_radius_) return;
-  const double q = r * inverse_smoothing_length_;
+  values_and_slopes(std::span<const double>(&r, 1), std::span<double>(&value, 1), std::span<double>(&slope, 1));
+}
+
+void Kernel::values_and_slopes(std::span<const double> radii, std::span<double> values,
+                               std::span<double> slopes) const {
+  if (values.size() != radii.size() || slopes.size() != radii.size())
+    throw std::invalid_argument("kernel: values_and_slopes needs one value and one slope per radius");
+  const auto run = [&](auto shape_and_slope) {
+    kernel_values(radii, values, slopes, support_radius_, inverse_smoothing_length_, value_factor_,
+                  derivative_factor_, shape_and_slope);
+  };
   switch (type_) {
-    case KernelType::quintic_spline: spline_shape_and_slope(quintic_shape, q, value, slope); break;
-    case KernelType::quartic_spline: spline_shape_and_slope(quartic_shape, q, value, slope); break;
+    case KernelType::quintic_spline:
+      run([](double q, double& w, double& slope) { spline_shape_and_slope(quintic_shape, q, w, slope); });
+      break;
+    case KernelType::quartic_spline:
+      run([](double q, double& w, double& slope) { spline_shape_and_slope(quartic_shape, q, w, slope); });
+      break;
     case KernelType::wendland_c2:
-      value = wendland_shape(q);
-      slope = wendland_shape_slope(q);
+      run([](double q, double& w, double& slope) {
+        w = wendland_shape(q);
+        slope = wendland_shape_slope(q);
+      });
       break;
   }
-  value *= value_factor_;
-  slope *= derivative_factor_;
 }
 
 Eigen::Vector3d Kernel::gradient(const Eigen::Vector3d& x_ij) const { return gradient(x_ij, x_ij.norm()); }

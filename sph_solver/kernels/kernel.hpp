@@ -22,6 +22,8 @@
 // The paper uses the quintic spline in 2D and the quartic spline in 3D: default_kernel.
 #include <Eigen/Core>
 
+#include <span>
+
 #include <string>
 #include <string_view>
 
@@ -53,6 +55,9 @@ class Kernel {
   /// W(r) and dW/dr together, bit for bit as value() and derivative() (the
   /// neighbour list's pairs take both).
   void value_and_derivative(double r, double& value, double& slope) const;
+  /// value_and_derivative() of every radius (the same bits), into spans of the
+  /// radii's size; throws std::invalid_argument when the sizes differ.
+  void values_and_slopes(std::span<const double> radii, std::span<double> values, std::span<double> slopes) const;
   /// grad_i W_ij = x_ij / r * dW/dr with x_ij = x_i - x_j; zero at r = 0.
   [[nodiscard]] Eigen::Vector3d gradient(const Eigen::Vector3d& x_ij) const;
   /// The same when the caller already has r = |x_ij| (neighbour loops do).

@@ -134,19 +134,65 @@ void CellList::build(std::span<const Eigen::Vector3d> points, double radius) {
 }
 
 NeighbourList CellList::neighbour_list(const Kernel* kernel, int rows) const {
+  NeighbourList list = neighbour_rows(rows, true);
+  if (kernel != nullptr) add_kernel_values(list, *kernel);
+  return list;
+}
+
+NeighbourList CellList::neighbour_indices(int rows) const { return neighbour_rows(rows, false); }
+
+NeighbourList CellList::neighbour_rows(int rows, bool with_distances) const {
   require(rows <= point_count(), "more rows asked for than there are points");
-  const int row_count = rows < 0 ? point_count() : rows;
+  return with_distances ? gather_rows<true>(rows < 0 ? point_count() : rows)
+                        : gather_rows<false>(rows < 0 ? point_count() : rows);
+}
+
+// Every point of the cells around i is written to the list and kept (the count
+// advanced) only when it is a neighbour: about a third of the candidates are, in
+// no order a branch predictor could learn, so the test is arithmetic, not a branch.
+// The squared distances are kept and their roots taken in one pass at the end.
+template <bool with_distances>
+NeighbourList CellList::gather_rows(int row_count) const {
   NeighbourList list;
   list.offsets.reserve(at(row_count) + 1);
   list.offsets.push_back(0);
+  std::size_t used = 0;
+  const auto make_room = [&](std::size_t more) {
+    if (list.indices.size() >= used + more) return;
+    const std::size_t size = std::max(2 * list.indices.size(), used + more);
+    list.indices.resize(size);
+    if constexpr (with_distances) list.distances.resize(size);
+  };
   for (int i = 0; i < row_count; ++i) {
-    for_each_neighbour(i, [&](int j, const Eigen::Vector3d&, double r) {
-      list.indices.push_back(j);
-      list.distances.push_back(r);
-    });
-    list.offsets.push_back(static_cast<int>(list.indices.size()));
+    const int own_position = original_to_sorted_[at(i)];
+    const Eigen::Vector3d x_i = sorted_points_[at(own_position)];
+    const int cell = cell_of_point_[at(i)];
+    const int first_adjacent = adjacent_cell_begin_[at(cell)];
+    const int end_adjacent = adjacent_cell_begin_[at(cell) + 1];
+    std::size_t candidates = 0;
+    for (int a = first_adjacent; a < end_adjacent; ++a) {
+      const int adjacent = adjacent_cells_[at(a)];
+      candidates += at(cell_begin_[at(adjacent) + 1] - cell_begin_[at(adjacent)]);
+    }
+    make_room(candidates);
+    int* const indices = list.indices.data();
+    double* const squared = with_distances ? list.distances.data() : nullptr;
+    for (int a = first_adjacent; a < end_adjacent; ++a) {
+      const int adjacent = adjacent_cells_[at(a)];
+      for (int position = cell_begin_[at(adjacent)]; position < cell_begin_[at(adjacent) + 1]; ++position) {
+        const double r_squared = (x_i - sorted_points_[at(position)]).squaredNorm();
+        indices[used] = sorted_to_original_[at(position)];
+        if constexpr (with_distances) squared[used] = r_squared;
+        used += static_cast<std::size_t>((r_squared < radius_squared_) & (position != own_position));
+      }
+    }
+    list.offsets.push_back(static_cast<int>(used));
   }
-  if (kernel != nullptr) add_kernel_values(list, *kernel);
+  list.indices.resize(used);
+  if constexpr (with_distances) {
+    list.distances.resize(used);
+    for (double& r : list.distances) r = std::sqrt(r);
+  }
   return list;
 }
 

@@ -17,7 +17,6 @@
 // radius is not a neighbour, as W vanishes there; coincident points are neighbours).
 #include <Eigen/Core>
 
-#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -41,17 +40,16 @@ class CellList {
   /// points spread over more than 2^40 radii (only a run that has already blown up does).
   void build(std::span<const Eigen::Vector3d> points, double radius);
 
-  /// Calls callback(j, x_ij, r) for every neighbour j of point i (an index into the
-  /// points of the last build), with x_ij = x_i - x_j and r = |x_ij|; each once, in
-  /// cell order.
-  template <class Callback>
-  void for_each_neighbour(int i, Callback&& callback) const;
-
   /// The neighbours of points 0 .. rows-1 (all points when rows < 0), rows in point
-  /// order, each row in for_each_neighbour's order, with each pair's distance and,
-  /// given a kernel, its value and slope there. A solver asks only for the rows of
-  /// its own particles: its ghosts are neighbours, never rows.
+  /// order, each row in cell order (cells ascending in Z-order, a cell's points in
+  /// index order), with each pair's distance and, given a kernel, its value and
+  /// slope there. A solver asks only for the rows of its own particles: its ghosts
+  /// are neighbours, never rows.
   [[nodiscard]] NeighbourList neighbour_list(const Kernel* kernel = nullptr, int rows = -1) const;
+
+  /// The same rows with the neighbours' indices only (no distances): what a
+  /// Verlet list of candidates keeps (NeighbourCandidates).
+  [[nodiscard]] NeighbourList neighbour_indices(int rows = -1) const;
 
   /// The points' indices sorted by cell (cells in Z-order, points of a cell by index):
   /// order[k] is the index of the point that comes k-th. A permutation of 0 .. N-1.
@@ -69,6 +67,9 @@ class CellList {
 
  private:
   static std::size_t at(int index) { return static_cast<std::size_t>(index); }
+  [[nodiscard]] NeighbourList neighbour_rows(int rows, bool with_distances) const;
+  template <bool with_distances>
+  [[nodiscard]] NeighbourList gather_rows(int row_count) const;
 
   int dimension_;
   double radius_ = 0.0;
@@ -84,24 +85,5 @@ class CellList {
   std::vector<int> adjacent_cell_begin_;    ///< occupied cells around cell c (itself included):
   std::vector<int> adjacent_cells_;         ///< adjacent_cells_[adjacent_cell_begin_[c] .. [c+1)), ascending
 };
-
-template <class Callback>
-void CellList::for_each_neighbour(int i, Callback&& callback) const {
-  assert(i >= 0 && i < point_count());
-  const int own_position = original_to_sorted_[at(i)];
-  const Eigen::Vector3d x_i = sorted_points_[at(own_position)];
-  const int cell = cell_of_point_[at(i)];
-  for (int a = adjacent_cell_begin_[at(cell)]; a < adjacent_cell_begin_[at(cell) + 1]; ++a) {
-    const int adjacent = adjacent_cells_[at(a)];
-    for (int position = cell_begin_[at(adjacent)]; position < cell_begin_[at(adjacent) + 1]; ++position) {
-      // Most candidates fail the distance test: look the index up only for hits.
-      const Eigen::Vector3d x_ij = x_i - sorted_points_[at(position)];
-      const double r_squared = x_ij.squaredNorm();
-      if (r_squared < radius_squared_ && position != own_position) {
-        callback(sorted_to_original_[at(position)], x_ij, std::sqrt(r_squared));
-      }
-    }
-  }
-}
 
 }  // namespace tankfsi::sph

@@ -21,7 +21,7 @@ NeighbourCandidates::NeighbourCandidates(int dimension, std::span<const Eigen::V
                                 std::to_string(skin));
   CellList cells(dimension);
   cells.build(points, radius + skin);
-  candidates_ = cells.neighbour_list(nullptr, rows);
+  candidates_ = cells.neighbour_indices(rows);
 }
 
 void require_moved_within(std::span<const Eigen::Vector3d> searched, std::span<const Eigen::Vector3d> moved,
@@ -46,20 +46,26 @@ NeighbourList NeighbourCandidates::within_radius(std::span<const Eigen::Vector3d
   const int rows = candidates_.particle_count();
   list.offsets.reserve(at(rows) + 1);
   list.offsets.push_back(0);
-  list.indices.reserve(candidates_.indices.size());
-  list.distances.reserve(candidates_.indices.size());
+  // Every candidate is written and kept only when within the radius (the count
+  // advanced arithmetically, without a branch: CellList does the same); the
+  // squared distances get their roots in one pass at the end.
+  list.indices.resize(candidates_.indices.size());
+  list.distances.resize(candidates_.indices.size());
+  std::size_t used = 0;
   for (int i = 0; i < rows; ++i) {
     const Eigen::Vector3d x_i = moved[at(i)];
     for (int k = candidates_.offsets[at(i)]; k < candidates_.offsets[at(i) + 1]; ++k) {
       const int j = candidates_.indices[at(k)];
       const double r_squared = (x_i - moved[at(j)]).squaredNorm();
-      if (r_squared < radius_squared) {
-        list.indices.push_back(j);
-        list.distances.push_back(std::sqrt(r_squared));
-      }
+      list.indices[used] = j;
+      list.distances[used] = r_squared;
+      used += static_cast<std::size_t>(r_squared < radius_squared);
     }
-    list.offsets.push_back(static_cast<int>(list.indices.size()));
+    list.offsets.push_back(static_cast<int>(used));
   }
+  list.indices.resize(used);
+  list.distances.resize(used);
+  for (double& r : list.distances) r = std::sqrt(r);
   if (kernel != nullptr) add_kernel_values(list, *kernel);
   return list;
 }

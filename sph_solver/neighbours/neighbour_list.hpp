@@ -33,8 +33,7 @@ struct NeighbourList {
 inline void add_kernel_values(NeighbourList& list, const Kernel& kernel) {
   list.values.resize(list.distances.size());
   list.slopes.resize(list.distances.size());
-  for (std::size_t k = 0; k < list.distances.size(); ++k)
-    kernel.value_and_derivative(list.distances[k], list.values[k], list.slopes[k]);
+  kernel.values_and_slopes(list.distances, list.values, list.slopes);
 }
 
 }  // namespace tankfsi::sph

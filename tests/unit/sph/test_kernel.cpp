@@ -250,7 +250,8 @@ TEST_CASE("kernel and derivative are continuous at the knots and vanish at the s
   }
 }
 
-TEST_CASE("kernel value and derivative together are value() and derivative() bit for bit", "[kernel]") {
+TEST_CASE("kernel value and slope together, of one radius or many, are value() and derivative() bit for bit",
+          "[kernel]") {
   const double h = 0.023;
   for (KernelType type : all_types) {
     for (int dimension : {2, 3}) {
@@ -259,13 +260,21 @@ TEST_CASE("kernel value and derivative together are value() and derivative() bit
       std::vector<double> radii{0.0, kernel.support_radius(), 1.5 * kernel.support_radius()};
       for (double knot : knots_in_h(type)) radii.push_back(knot * h);
       for (int k = 1; k < 777; ++k) radii.push_back(kernel.support_radius() * k / 777.0);
-      for (const double r : radii) {
+      // And all radii at once, as a neighbour list takes them.
+      std::vector<double> values(radii.size(), -1.0), slopes(radii.size(), -1.0);
+      kernel.values_and_slopes(radii, values, slopes);
+      for (std::size_t k = 0; k < radii.size(); ++k) {
+        const double r = radii[k];
         double value = -1.0, slope = -1.0;
         kernel.value_and_derivative(r, value, slope);
         INFO(kernel_name(type) << " in " << dimension << "D at r/h = " << r / h);
         CHECK(value == kernel.value(r));
         CHECK(slope == kernel.derivative(r));
+        CHECK(values[k] == value);
+        CHECK(slopes[k] == slope);
       }
+      std::vector<double> too_few(radii.size() - 1);
+      CHECK_THROWS_AS(kernel.values_and_slopes(radii, too_few, slopes), std::invalid_argument);
     }
   }
 }

@@ -54,18 +54,21 @@ Visits brute_force(const std::vector<Eigen::Vector3d>& points, double radius) {
   return neighbours;
 }
 
-// The callback's visits in visiting order, checking x_ij and r on the way.
+// The neighbour list's rows, checking each pair's distance on the way.
 Visits searched(const CellList& cells, const std::vector<Eigen::Vector3d>& points) {
+  const NeighbourList list = cells.neighbour_list();
+  REQUIRE(list.particle_count() == static_cast<int>(points.size()));
   Visits neighbours(points.size());
-  int wrong_geometry = 0;  // counted, not CHECKed one by one: there are millions of pairs
-  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
-    cells.for_each_neighbour(i, [&](int j, const Eigen::Vector3d& x_ij, double r) {
-      const Eigen::Vector3d expected = points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(j)];
-      wrong_geometry += x_ij != expected || r != expected.norm();
+  int wrong_distance = 0;  // counted, not CHECKed one by one: there are millions of pairs
+  for (int i = 0; i < list.particle_count(); ++i) {
+    for (int k = list.offsets[static_cast<std::size_t>(i)]; k < list.offsets[static_cast<std::size_t>(i) + 1]; ++k) {
+      const int j = list.indices[static_cast<std::size_t>(k)];
+      const Eigen::Vector3d x_ij = points[static_cast<std::size_t>(i)] - points[static_cast<std::size_t>(j)];
+      wrong_distance += list.distances[static_cast<std::size_t>(k)] != x_ij.norm();
       neighbours[static_cast<std::size_t>(i)].push_back(j);
-    });
+    }
   }
-  CHECK(wrong_geometry == 0);
+  CHECK(wrong_distance == 0);
   return neighbours;
 }
 
@@ -158,9 +161,10 @@ TEST_CASE("cell list: points at exactly the radius, coincident points, points on
     // Each of the coincident pair sees the other at r = 0.
     const int first_copy = static_cast<int>(dimension == 3 ? 66 : 18);
     REQUIRE(points[static_cast<std::size_t>(first_copy)] == Eigen::Vector3d(0.5, 0.5, 0.0));
-    int at_zero = 0;
-    cells.for_each_neighbour(first_copy, [&](int, const Eigen::Vector3d&, double r) { at_zero += r == 0.0; });
-    CHECK(at_zero == 1);
+    const NeighbourList list = cells.neighbour_list();
+    const auto row = list.neighbours_of(first_copy);
+    const auto first = list.distances.begin() + list.offsets[static_cast<std::size_t>(first_copy)];
+    CHECK(std::count(first, first + static_cast<std::ptrdiff_t>(row.size()), 0.0) == 1);
   }
 }
 
@@ -195,9 +199,6 @@ TEST_CASE("cell list: empty and single-point sets", "[neighbours]") {
     CHECK(cells.point_count() == 1);
     CHECK(cells.cell_count() == 1);
     CHECK(cells.cell_order() == std::vector<int>{0});
-    int visits = 0;
-    cells.for_each_neighbour(0, [&](int, const Eigen::Vector3d&, double) { ++visits; });
-    CHECK(visits == 0);
     const NeighbourList single = cells.neighbour_list();
     CHECK(single.offsets == std::vector<int>{0, 0});
   }
@@ -217,6 +218,26 @@ TEST_CASE("cell list is rebuilt from scratch", "[neighbours]") {
   const NeighbourList b = fresh.neighbour_list();
   CHECK(a.offsets == b.offsets);
   CHECK(a.indices == b.indices);
+}
+
+TEST_CASE("cell list: the neighbours' indices alone are the neighbour list's rows", "[neighbours]") {
+  std::mt19937_64 engine(11);
+  for (int dimension : {2, 3}) {
+    INFO(dimension << "D");
+    const auto points = random_cloud(engine, 2000, dimension, Eigen::Vector3d::Zero(), 1.0);
+    CellList cells(dimension);
+    cells.build(points, 0.09);
+    for (int rows : {-1, 0, 63, 64, 65, 1500}) {
+      INFO(rows << " rows");
+      const NeighbourList full = cells.neighbour_list(nullptr, rows);
+      const NeighbourList indices = cells.neighbour_indices(rows);
+      CHECK(indices.offsets == full.offsets);
+      CHECK(indices.indices == full.indices);
+      CHECK(indices.distances.empty());
+      CHECK(full.distances.size() == full.indices.size());
+    }
+    CHECK_THROWS_AS(cells.neighbour_indices(2001), std::invalid_argument);
+  }
 }
 
 TEST_CASE("cell order: a permutation grouping cells contiguously in Z-order", "[neighbours]") {
@@ -276,7 +297,7 @@ TEST_CASE("morton_less agrees with interleaved keys", "[neighbours]") {
   }
 }
 
-TEST_CASE("neighbour list (CSR) equals the callback's visits", "[neighbours]") {
+TEST_CASE("neighbour list (CSR): each row in cell order", "[neighbours]") {
   std::mt19937_64 engine(42);
   for (int dimension : {2, 3}) {
     const auto points = random_cloud(engine, 1000, dimension, Eigen::Vector3d::Zero(), 1.0);
@@ -286,12 +307,17 @@ TEST_CASE("neighbour list (CSR) equals the callback's visits", "[neighbours]") {
     REQUIRE(list.particle_count() == static_cast<int>(points.size()));
     CHECK(list.offsets.front() == 0);
     CHECK(list.offsets.back() == static_cast<int>(list.indices.size()));
-    for (int i = 0; i < static_cast<int>(points.size()); ++i) {
-      std::vector<int> visits;
-      cells.for_each_neighbour(i, [&](int j, const Eigen::Vector3d&, double) { visits.push_back(j); });
+    CHECK(list.distances.size() == list.indices.size());
+    std::vector<int> place(points.size());  // where each point comes in cell order
+    for (std::size_t k = 0; k < points.size(); ++k)
+      place[static_cast<std::size_t>(cells.cell_order()[k])] = static_cast<int>(k);
+    int out_of_order = 0;
+    for (int i = 0; i < list.particle_count(); ++i) {
       const auto row = list.neighbours_of(i);
-      CHECK(std::vector<int>(row.begin(), row.end()) == visits);
+      for (std::size_t k = 1; k < row.size(); ++k)
+        out_of_order += place[static_cast<std::size_t>(row[k - 1])] >= place[static_cast<std::size_t>(row[k])];
     }
+    CHECK(out_of_order == 0);
   }
 }
 
