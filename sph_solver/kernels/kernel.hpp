@@ -23,7 +23,6 @@
 #include <Eigen/Core>
 
 #include <span>
-
 #include <string>
 #include <string_view>
 
