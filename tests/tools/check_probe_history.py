@@ -58,14 +58,14 @@ def main():
         print(f"FAIL: the run ends at {t[-1]} s, before the last reference time in [{args.start}, {args.end}]")
         return 1
     failures = []
+    errors = []
     print(f"{'t (s)':>8}{'reference':>12}{'run':>12}{'error':>10}")
     for time, expected in window:
         got = float(np.interp(time, t, value))
-        error = got / expected - 1
-        print(f"{time:8.3f}{expected:12.5f}{got:12.5f}{100 * error:+9.2f} %")
-        if not abs(error) <= args.tolerance:
-            failures.append(f"t = {time} s: {column} {got:.5f} against {expected:.5f} ({100 * error:+.2f} %)")
-    errors = [float(np.interp(time, t, value)) / expected - 1 for time, expected in window]
+        errors.append(got / expected - 1)
+        print(f"{time:8.3f}{expected:12.5f}{got:12.5f}{100 * errors[-1]:+9.2f} %")
+        if not abs(errors[-1]) <= args.tolerance:
+            failures.append(f"t = {time} s: {column} {got:.5f} against {expected:.5f} ({100 * errors[-1]:+.2f} %)")
     print(f"{len(window)} samples, error {100 * min(errors):+.2f} % to {100 * max(errors):+.2f} % "
           f"(tolerance {100 * args.tolerance:.1f} %)")
     for failure in failures:

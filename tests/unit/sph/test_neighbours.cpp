@@ -227,7 +227,7 @@ TEST_CASE("cell list: the neighbours' indices alone are the neighbour list's row
     const auto points = random_cloud(engine, 2000, dimension, Eigen::Vector3d::Zero(), 1.0);
     CellList cells(dimension);
     cells.build(points, 0.09);
-    for (int rows : {-1, 0, 63, 64, 65, 1500}) {
+    for (int rows : {-1, 0, 1, 1500}) {
       INFO(rows << " rows");
       const NeighbourList full = cells.neighbour_list(nullptr, rows);
       const NeighbourList indices = cells.neighbour_indices(rows);
