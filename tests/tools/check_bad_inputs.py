@@ -11,6 +11,7 @@ number of the line marked "# <- here". CASES_DIR/command_line_cases.txt lists
 bad command lines as "ARGUMENTS | MESSAGE" against valid_minimal.yaml.
 """
 import argparse
+import concurrent.futures
 import os
 import pathlib
 import shlex
@@ -32,7 +33,8 @@ def expected_from_file(path: pathlib.Path):
     return message
 
 
-def run_case(command, arguments, expected, label, failures):
+def run_case(command, arguments, expected, label):
+    """Runs one bad input; returns the problems found (none: it failed as it must)."""
     with tempfile.TemporaryDirectory() as scratch:
         output = pathlib.Path(scratch) / "run"
         full = command + arguments + ["--output", str(output)]
@@ -46,9 +48,7 @@ def run_case(command, arguments, expected, label, failures):
                             + "\n    ".join(result.stderr.splitlines() or ["(empty)"]))
         if output.exists():
             problems.append(f"the run folder {output} was created")
-        if problems:
-            failures.append(f"{label}: " + "\n  ".join(problems))
-        print(("FAIL " if problems else "ok   ") + label)
+        return problems
 
 
 def main():
@@ -62,16 +62,32 @@ def main():
     command = shlex.split(args.launcher) + args.program[:split]
     cases = pathlib.Path(args.program[split + 1]).resolve()
 
-    failures, count = [], 0
+    cases_to_run = []  # (arguments, expected message, label)
     for path in sorted(cases.glob("*.yaml")):
         expected = expected_from_file(path)
         if expected is None:
             continue
         expected = expected.replace("{file}", str(path)).replace("{dir}", str(cases))
-        run_case(command, [str(path)], expected, path.name, failures)
-        count += 1
+        cases_to_run.append(([str(path)], expected, path.name))
 
     valid = cases / "valid_minimal.yaml"
+    for line in (cases / "command_line_cases.txt").read_text().splitlines():
+        if not line.strip() or line.startswith("#"):
+            continue
+        arguments, expected = (part.strip() for part in line.split(" | ", 1))
+        substitute = lambda text: text.replace("{file}", str(valid)).replace("{dir}", str(cases))
+        cases_to_run.append((shlex.split(substitute(arguments)), substitute(expected), arguments))
+
+    # A bad input ends within a second, most of it the launcher's start-up and
+    # teardown, not computing: a few at a time keep the cores busy.
+    failures, count = [], len(cases_to_run)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        outcomes = pool.map(lambda case: run_case(command, *case), cases_to_run)
+        for (_, _, label), problems in zip(cases_to_run, outcomes):
+            if problems:
+                failures.append(f"{label}: " + "\n  ".join(problems))
+            print(("FAIL " if problems else "ok   ") + label)
+
     # Positive control: the same command on a valid case must succeed and write,
     # otherwise "nothing was written" above would prove nothing.
     with tempfile.TemporaryDirectory() as scratch:
@@ -83,14 +99,6 @@ def main():
             failures.append(f"control: valid_minimal.yaml gave exit {result.returncode} and "
                             f"{'no' if not output.exists() else 'an incomplete'} run folder:\n{result.stderr}")
         print(("ok   " if control_ok else "FAIL ") + "control: valid case writes its run folder")
-
-    for line in (cases / "command_line_cases.txt").read_text().splitlines():
-        if not line.strip() or line.startswith("#"):
-            continue
-        arguments, expected = (part.strip() for part in line.split(" | ", 1))
-        substitute = lambda text: text.replace("{file}", str(valid)).replace("{dir}", str(cases))
-        run_case(command, shlex.split(substitute(arguments)), substitute(expected), arguments, failures)
-        count += 1
 
     print(f"\n{count - len(failures)} passed, {len(failures)} failed")
     for failure in failures:

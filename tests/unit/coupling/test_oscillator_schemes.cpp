@@ -62,34 +62,54 @@ std::vector<SchemeCase> scheme_cases() {
 //   implicit, chi = 2: 1.99 (the ramp's impulse is the window's impulse).
 // Iterations per window at dt_c = 0.01 s (tolerance 1e-10): aitken 4 (serial),
 // 12-13 (parallel); iqn_ils 2.5-2.6 (serial), 3.7 (parallel).
+// Each scheme runs on every split of the world; the first split (1:1, 1:2 or
+// 1:3) also runs the coarse windows for the order and chi = 1. The further
+// splits run the fine windows with chi = 2 and must give the first split's
+// answer: their ranks are oversubscribed on a small machine, where every
+// window's messages wait for a time slice (ten times slower than on 2 ranks).
 TEST_CASE("two-mass oscillator: every scheme on every split against the closed form", "[coupling][oscillator]") {
   std::map<std::string, double> first_split_error;
   double implicit_reference = -1;
+  const int first_split = fluid_rank_choices().front();
   for (const int fluid_ranks : fluid_rank_choices()) {
     PartnerSplit split(fluid_ranks);
     for (const auto& scheme : scheme_cases()) {
       for (const double chi : {1.0, 2.0}) {
-        OscillatorRun coarse;
-        coarse.settings = scheme.settings;
-        coarse.settings.ramp_chi = chi;
-        coarse.settings.time_window = 0.02;
-        OscillatorRun fine = coarse;
+        if (fluid_ranks != first_split && chi != 2.0) continue;
+        OscillatorRun fine;
+        fine.settings = scheme.settings;
+        fine.settings.ramp_chi = chi;
         fine.settings.time_window = 0.01;
-        const OscillatorResult a = coarse.run(split);
         const OscillatorResult b = fine.run(split);
-        const double order = std::log2(a.max_error / b.max_error);
         int rank = 0;
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-        if (rank == 0)
-          std::printf("%d:%d %-42s chi %.0f  error %.3e -> %.3e  order %.2f  iterations/window %.2f\n", fluid_ranks,
-                      split.structure_ranks, scheme.name, chi, a.max_error, b.max_error, order,
-                      double(b.iterations) / double(b.windows));
-        CAPTURE(fluid_ranks, scheme.name, chi, a.max_error, b.max_error, order);
+        CAPTURE(fluid_ranks, scheme.name, chi, b.max_error);
         REQUIRE(b.windows == 200);
         // The split does not change the answer (sums over ranks: round-off).
         const std::string key = std::string(scheme.name) + (chi == 1.0 ? " chi1" : " chi2");
         if (!first_split_error.count(key)) first_split_error[key] = b.max_error;
         CHECK(b.max_error == Approx(first_split_error[key]).epsilon(1e-9));
+        if (scheme.settings.is_implicit() && chi == 2.0) {
+          // Every implicit variant converges to the same answer (tolerance 1e-10).
+          if (implicit_reference < 0) implicit_reference = b.max_error;
+          CHECK(b.max_error == Approx(implicit_reference).epsilon(1e-6));
+          CHECK(b.max_error < 2e-3);
+        }
+        if (fluid_ranks != first_split) {
+          if (rank == 0)
+            std::printf("%d:%d %-42s chi %.0f  error %.3e  iterations/window %.2f\n", fluid_ranks,
+                        split.structure_ranks, scheme.name, chi, b.max_error, double(b.iterations) / double(b.windows));
+          continue;
+        }
+        OscillatorRun coarse = fine;
+        coarse.settings.time_window = 0.02;
+        const OscillatorResult a = coarse.run(split);
+        const double order = std::log2(a.max_error / b.max_error);
+        if (rank == 0)
+          std::printf("%d:%d %-42s chi %.0f  error %.3e -> %.3e  order %.2f  iterations/window %.2f\n", fluid_ranks,
+                      split.structure_ranks, scheme.name, chi, a.max_error, b.max_error, order,
+                      double(b.iterations) / double(b.windows));
+        CAPTURE(a.max_error, order);
         if (!scheme.settings.is_implicit()) {
           CHECK(order > 0.9);
         } else if (chi == 1.0) {
@@ -97,10 +117,6 @@ TEST_CASE("two-mass oscillator: every scheme on every split against the closed f
           CHECK(order < 1.3);
         } else {
           CHECK(order > 1.8);
-          // Every implicit variant converges to the same answer (tolerance 1e-10).
-          if (implicit_reference < 0) implicit_reference = b.max_error;
-          CHECK(b.max_error == Approx(implicit_reference).epsilon(1e-6));
-          CHECK(b.max_error < 2e-3);
         }
       }
     }
