@@ -45,6 +45,13 @@ std::vector<KeySpec> fluid_keys() {
                "that is not full) are counted as free-surface particles and are not shifted; the pressure "
                "condition P = 0 itself is imposed on the surface plane beyond them.")
           .default_is("0.97").above(0).below(1),
+      real_key("fluid.ppe.preconditioner_radius",
+               "BoomerAMG (the default preconditioner) is built on a sparser twin of the pressure operator: "
+               "the particle pairs within this many particle spacings, their weights scaled so that the twin's "
+               "Laplacian of a quadratic field is the operator's. The solution is the operator's either way (to "
+               "the solver's tolerance); the twin's hierarchy costs less to build and apply. 0: built on the "
+               "operator itself. At least 1 (the nearest neighbours) otherwise.")
+          .default_is("1.8").at_least(0).at_most(10),
       text_key("fluid.ppe.solver_options",
                "PETSc options for the pressure solver (prefix -ppe_; without them CG with hypre BoomerAMG, "
                "-ppe_ksp_rtol 1e-6), applied before the command line's.")

@@ -60,6 +60,10 @@ FluidModel read_model(const CaseConfig& config) {
   m.gravity = config.real("fluid.gravity");
   m.density_error_weight = config.real("fluid.ppe.density_error_weight");
   m.free_surface_threshold = config.real("fluid.ppe.free_surface_threshold");
+  m.preconditioner_radius = config.real("fluid.ppe.preconditioner_radius");
+  if (m.preconditioner_radius > 0.0 && m.preconditioner_radius < 1.0)
+    throw config.error_at("fluid.ppe.preconditioner_radius",
+                          "must be 0 (the operator itself) or at least 1 particle spacing (the nearest neighbours)");
   m.shifting = config.boolean("fluid.shifting.enabled");
   if (m.shifting) m.shifting_coefficient = config.real("fluid.shifting.coefficient");
   return m;

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -49,7 +50,10 @@ void PressurePoisson::create_solver() {
   // sets any of these, theirs holds.
   PCType type = nullptr;
   check(PCGetType(pc, &type), "PCGetType");
-  if (type != nullptr && std::string(type) == PCHYPRE) {
+  const char* hypre_type = nullptr;
+  if (type != nullptr && std::string(type) == PCHYPRE) check(PCHYPREGetType(pc, &hypre_type), "PCHYPREGetType");
+  multigrid_ = hypre_type != nullptr && std::string(hypre_type) == "boomeramg";
+  if (multigrid_) {
     tankfsi::apply_default_petsc_options(
         "-ppe_pc_hypre_boomeramg_coarsen_type HMIS -ppe_pc_hypre_boomeramg_interp_type ext+i "
         "-ppe_pc_hypre_boomeramg_P_max 4 -ppe_pc_hypre_boomeramg_strong_threshold 0.5 "
@@ -79,6 +83,7 @@ std::string PressurePoisson::settings() const {
 PressurePoisson::~PressurePoisson() {
   if (ksp_ != nullptr) KSPDestroy(&ksp_);
   if (matrix_ != nullptr) MatDestroy(&matrix_);
+  if (twin_ != nullptr) MatDestroy(&twin_);
 }
 
 PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const double> mass,
@@ -89,77 +94,142 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
   return solve_assembled(source, pressure);
 }
 
-void PressurePoisson::sort_row(std::size_t begin) {
-  // PETSc keeps a row's entries in column order; handed over in that order, the
-  // whole row is copied at once (MAT_SORTED_FULL) instead of inserted entry by
-  // entry. Insertion sort: a row is a few ascending runs (one per cell scanned).
-  for (std::size_t k = begin + 1; k < columns_.size(); ++k) {
-    const PetscInt column = columns_[k];
-    const PetscScalar value = values_[k];
-    std::size_t slot = k;
-    for (; slot > begin && columns_[slot - 1] > column; --slot) {
-      columns_[slot] = columns_[slot - 1];
-      values_[slot] = values_[slot - 1];
-    }
-    columns_[slot] = column;
-    values_[slot] = value;
+void PressurePoisson::Rows::clear(int owned) {
+  begin.assign(1, 0);
+  columns.clear();
+  values.clear();
+  diagonal_nonzeros.assign(at(owned), 0);
+  off_diagonal_nonzeros.assign(at(owned), 0);
+}
+
+void PressurePoisson::Rows::add(PetscInt row, PetscScalar diagonal, const std::vector<RowEntry>& entries,
+                                PetscInt owned_begin, PetscInt owned_end, double max_distance) {
+  const std::size_t i = begin.size() - 1;
+  // The diagonal in its place among the columns (PETSc takes each row whole
+  // and in column order: MAT_SORTED_FULL).
+  bool diagonal_placed = false;
+  const auto place_diagonal = [&] {
+    columns.push_back(row);
+    values.push_back(diagonal);
+    ++diagonal_nonzeros[i];
+    diagonal_placed = true;
+  };
+  for (const RowEntry& e : entries) {
+    if (e.distance > max_distance) continue;
+    if (!diagonal_placed && e.column > row) place_diagonal();
+    columns.push_back(e.column);
+    values.push_back(e.value);
+    ++(e.column >= owned_begin && e.column < owned_end ? diagonal_nonzeros : off_diagonal_nonzeros)[i];
   }
+  if (!diagonal_placed) place_diagonal();
+  begin.push_back(static_cast<PetscInt>(values.size()));
+}
+
+Mat PressurePoisson::create_matrix(const Rows& rows, PetscInt first_row) const {
+  const auto owned = static_cast<PetscInt>(rows.begin.size() - 1);
+  Mat matrix = nullptr;
+  check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, rows.diagonal_nonzeros.data(), 0,
+                     rows.off_diagonal_nonzeros.data(), &matrix),
+        "MatCreateAIJ");
+  check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  // Every row whole, in column order, its preallocation exact (Rows::add()).
+  check(MatSetOption(matrix, MAT_SORTED_FULL, PETSC_TRUE), "MatSetOption");
+  for (PetscInt i = 0; i < owned; ++i) {
+    const PetscInt global_row = first_row + i;
+    const PetscInt begin = rows.begin[at(i)];
+    check(MatSetValues(matrix, 1, &global_row, rows.begin[at(i) + 1] - begin, rows.columns.data() + begin,
+                       rows.values.data() + begin, INSERT_VALUES),
+          "MatSetValues");
+  }
+  check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return matrix;
 }
 
 void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
                                std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet) {
   const int owned = n.owned;
   const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
-  // The rows in CSR form, in buffers kept from step to step (no allocation once
-  // they have grown to the problem's size).
-  row_begin_.assign(1, 0);
-  columns_.clear();
-  values_.clear();
-  diagonal_nonzeros_.assign(at(owned), 1);
-  off_diagonal_nonzeros_.assign(at(owned), 0);
+  const PetscInt end_row = first_row + owned;
+  const double twin_radius = multigrid_ ? n.model.preconditioner_radius * n.model.spacing : 0.0;
+  const bool with_twin = twin_radius > 0.0;
+  operator_rows_.clear(owned);
+  if (with_twin) {
+    twin_rows_.clear(owned);
+    twin_air_.assign(at(owned), 0.0);
+  }
+  // sum a_ij r_ij^2 over the twin's pairs and over all (the second moments).
+  double moments[2] = {0.0, 0.0};
+  constexpr double everything = std::numeric_limits<double>::infinity();
   for (int i = 0; i < owned; ++i) {
-    const std::size_t diagonal_slot = values_.size();
-    columns_.push_back(static_cast<PetscInt>(global_index[at(i)]));
-    values_.push_back(1.0);
-    if (dirichlet[at(i)] == 0) {
-      double diagonal = 0.0;
-      const NeighbourList& list = n.neighbours;
-      for (int k = list.offsets[at(i)]; k < list.offsets[at(i) + 1]; ++k) {
-        const int j = list.indices[at(k)];
-        const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
-        const double a = laplacian_weight(n.model, list.distances[at(k)], list.slopes[at(k)], volume);
-        diagonal -= a;
-        if (dirichlet[at(j)] != 0) continue;
-        columns_.push_back(static_cast<PetscInt>(global_index[at(j)]));
-        values_.push_back(a);
-        ++(j < owned ? diagonal_nonzeros_ : off_diagonal_nonzeros_)[at(i)];
-      }
-      if (!n.surface.empty()) diagonal -= n.surface[at(i)].laplacian_share();
-      // An isolated particle (no neighbours, all on the surface) would give a zero row.
-      values_[diagonal_slot] = diagonal > 0.0 ? diagonal : 1.0;
-      sort_row(diagonal_slot);
+    entries_.clear();
+    const auto row = static_cast<PetscInt>(global_index[at(i)]);
+    if (dirichlet[at(i)] != 0) {
+      operator_rows_.add(row, 1.0, entries_, first_row, end_row, everything);
+      if (with_twin) twin_rows_.add(row, 1.0, entries_, first_row, end_row, everything);
+      continue;
     }
-    row_begin_.push_back(static_cast<PetscInt>(values_.size()));
+    double diagonal = 0.0, twin_diagonal = 0.0;
+    const NeighbourList& list = n.neighbours;
+    for (int k = list.offsets[at(i)]; k < list.offsets[at(i) + 1]; ++k) {
+      const int j = list.indices[at(k)];
+      const double r = list.distances[at(k)];
+      const double volume = (mass[at(i)] + mass[at(j)]) / (density[at(i)] + density[at(j)]);
+      const double a = laplacian_weight(n.model, r, list.slopes[at(k)], volume);
+      diagonal -= a;
+      if (with_twin) {
+        moments[1] += a * r * r;
+        if (r <= twin_radius) {
+          moments[0] += a * r * r;
+          twin_diagonal -= a;
+        }
+      }
+      if (dirichlet[at(j)] != 0) continue;
+      entries_.push_back({static_cast<PetscInt>(global_index[at(j)]), a, r});
+    }
+    // Column order. Insertion sort: a row is a few ascending runs (one per cell scanned).
+    for (std::size_t k = 1; k < entries_.size(); ++k) {
+      const RowEntry e = entries_[k];
+      std::size_t slot = k;
+      for (; slot > 0 && entries_[slot - 1].column > e.column; --slot) entries_[slot] = entries_[slot - 1];
+      entries_[slot] = e;
+    }
+    const double air = n.surface.empty() ? 0.0 : n.surface[at(i)].laplacian_share();
+    diagonal -= air;
+    // An isolated particle (no neighbours, all on the surface) would give a zero row.
+    operator_rows_.add(row, diagonal > 0.0 ? diagonal : 1.0, entries_, first_row, end_row, everything);
+    if (with_twin) {
+      twin_rows_.add(row, twin_diagonal, entries_, first_row, end_row, twin_radius);
+      twin_air_[at(i)] = air;
+    }
   }
 
-  if (matrix_ != nullptr) MatDestroy(&matrix_);
   dirichlet_.assign(dirichlet.begin(), dirichlet.begin() + owned);
-  Mat& matrix = matrix_;
-  check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, diagonal_nonzeros_.data(), 0,
-                     off_diagonal_nonzeros_.data(), &matrix),
-        "MatCreateAIJ");
-  check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-  // Every row whole, in column order, its preallocation exact (sort_row()).
-  check(MatSetOption(matrix, MAT_SORTED_FULL, PETSC_TRUE), "MatSetOption");
-  for (int i = 0; i < owned; ++i) {
-    const PetscInt global_row = first_row + i;
-    const PetscInt begin = row_begin_[at(i)];
-    check(MatSetValues(matrix, 1, &global_row, row_begin_[at(i) + 1] - begin, columns_.data() + begin,
-                       values_.data() + begin, INSERT_VALUES),
-          "MatSetValues");
+  if (matrix_ != nullptr) MatDestroy(&matrix_);
+  if (twin_ != nullptr) MatDestroy(&twin_);
+  matrix_ = create_matrix(operator_rows_, first_row);
+  if (with_twin) {
+    MPI_Allreduce(MPI_IN_PLACE, moments, 2, MPI_DOUBLE, MPI_SUM, comm_);
+    // No pair within the radius anywhere (particles all apart): the operator is
+    // the preconditioner's matrix.
+    if (moments[0] < 0.0) {
+      const double scale = moments[1] / moments[0];
+      for (int i = 0; i < owned; ++i) {
+        if (dirichlet_[at(i)] != 0) continue;
+        const auto row = static_cast<PetscInt>(global_index[at(i)]);
+        for (PetscInt k = twin_rows_.begin[at(i)]; k < twin_rows_.begin[at(i) + 1]; ++k) {
+          PetscScalar& value = twin_rows_.values[at(static_cast<int>(k))];
+          if (twin_rows_.columns[at(static_cast<int>(k))] != row) {
+            value *= scale;
+          } else {
+            value = scale * value - twin_air_[at(i)];
+            if (!(value > 0.0)) value = 1.0;  // isolated, as in the operator
+          }
+        }
+      }
+      twin_ = create_matrix(twin_rows_, first_row);
+    }
   }
-  check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 
   // Every step's operator is a new matrix of another pattern, and often of
   // another size (particles migrate and leave): a new solver takes it, with
@@ -169,7 +239,7 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   // builds its hierarchy anew every step either way.
   create_solver();
   solved_size_ = owned;
-  check(KSPSetOperators(ksp_, matrix, matrix), "KSPSetOperators");
+  check(KSPSetOperators(ksp_, matrix_, preconditioning_matrix()), "KSPSetOperators");
 }
 
 PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure,

@@ -203,3 +203,98 @@ TEST_CASE("the PPE's BoomerAMG takes the cheap hierarchy unless the case sets it
   }
   clear();
 }
+
+namespace {
+
+/// y = M x for the tank's particles, in their own order (one rank).
+std::vector<double> multiply(Mat matrix, const std::vector<double>& x) {
+  Vec in = nullptr, out = nullptr;
+  MatCreateVecs(matrix, &in, &out);
+  PetscScalar* values = nullptr;
+  VecGetArray(in, &values);
+  std::copy(x.begin(), x.end(), values);
+  VecRestoreArray(in, &values);
+  MatMult(matrix, in, out);
+  const PetscScalar* result = nullptr;
+  VecGetArrayRead(out, &result);
+  std::vector<double> y(result, result + x.size());
+  VecRestoreArrayRead(out, &result);
+  VecDestroy(&in);
+  VecDestroy(&out);
+  return y;
+}
+
+PetscInt row_length(Mat matrix, PetscInt row) {
+  PetscInt length = 0;
+  const PetscInt* columns = nullptr;
+  REQUIRE(MatGetRow(matrix, row, &length, &columns, nullptr) == 0);
+  const PetscInt found = length;  // MatRestoreRow() zeroes it
+  MatRestoreRow(matrix, row, &length, &columns, nullptr);
+  return found;
+}
+
+}  // namespace
+
+TEST_CASE("BoomerAMG's twin of the PPE operator: two shells a row, the operator's Laplacian of a quadratic field",
+          "[isph]") {
+  Tank tank;
+  const int n = tank.particles.count();
+  std::vector<std::int64_t> index(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) index[static_cast<std::size_t>(i)] = i;
+  const std::vector<unsigned char> no_dirichlet(static_cast<std::size_t>(n), 0);
+  const auto& x = tank.particles.position;
+  std::vector<double> quadratic(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) quadratic[i] = 2.0 * x[i].x() * x[i].x() + 5.0 * x[i].y() * x[i].y();
+
+  SECTION("the default radius, 1.8 L0") {
+    PressurePoisson ppe(MPI_COMM_SELF, "");
+    ppe.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
+    REQUIRE(ppe.preconditioning_matrix() != ppe.operator_matrix());
+    const auto full = multiply(ppe.operator_matrix(), quadratic);
+    const auto twin = multiply(ppe.preconditioning_matrix(), quadratic);
+    int checked = 0;
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+      if (!tank.submerged(i) || tank.near_floor(i) || tank.near_side(i)) continue;  // full kernel support only
+      // Lattice points (a, b) L0 with a^2 + b^2 <= 3.24 (the particle and the
+      // first two shells), against a^2 + b^2 < 12.96 in the kernel's support of
+      // 3h = 3.6 L0.
+      REQUIRE(row_length(ppe.preconditioning_matrix(), i) == 9);
+      REQUIRE(row_length(ppe.operator_matrix(), i) == 37);
+      worst = std::max(worst, std::abs(twin[static_cast<std::size_t>(i)] / full[static_cast<std::size_t>(i)] - 1.0));
+      ++checked;
+    }
+    // Unscaled, the twin's Laplacian would be the two shells' share of the
+    // lattice's second moment sum a(r) r^2 alone.
+    double kept = 0.0, all = 0.0;
+    const double L0 = tank.model.spacing;
+    for (int a = -4; a <= 4; ++a)
+      for (int b = -4; b <= 4; ++b) {
+        const double r = L0 * std::hypot(a, b);
+        if (r == 0.0) continue;
+        const double moment = laplacian_weight(tank.model, r, tank.kernel.derivative(r), L0 * L0) * r * r;
+        all += moment;
+        kept += r <= 1.8 * L0 ? moment : 0.0;
+      }
+    INFO("worst relative difference of the twin's Laplacian, interior rows: " << worst << "; unscaled it would be "
+         << kept / all - 1.0);
+    CHECK(checked > 100);
+    // 5 %: the scale is the ratio of the second moments over every row, the
+    // truncated ones at the walls and the surface included, where the two
+    // shells hold a larger share: interior rows differ by 1.9 % (measured).
+    // Unscaled the difference is the kept share's, checked to be far larger.
+    CHECK(worst < 0.05);
+    CHECK(std::abs(kept / all - 1.0) > 0.2);
+  }
+  SECTION("radius 0, or a preconditioner other than BoomerAMG: the operator itself") {
+    tank.model.preconditioner_radius = 0.0;
+    PressurePoisson without(MPI_COMM_SELF, "");
+    without.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
+    CHECK(without.preconditioning_matrix() == without.operator_matrix());
+    tank.model.preconditioner_radius = 1.8;
+    PressurePoisson jacobi(MPI_COMM_SELF, "-ppe_pc_type jacobi");
+    jacobi.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
+    CHECK(jacobi.preconditioning_matrix() == jacobi.operator_matrix());
+    PetscOptionsClearValue(nullptr, "-ppe_pc_type");
+  }
+}
