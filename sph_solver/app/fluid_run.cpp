@@ -199,6 +199,7 @@ struct RunStatistics {
   int max_ppe_iterations = 0;
   double max_density_error = 0.0;
   long long wall_returned_particles = 0;
+  long long ppe_twin_failures = 0;  ///< steps whose pressure solve left the operator's twin
   double particle_steps = 0.0;
   double simulated = 0.0;  ///< sum of the steps (more than the run's time when implicit windows repeat)
   std::map<std::string, long long> limiting;
@@ -212,6 +213,7 @@ struct RunStatistics {
     max_ppe_iterations = std::max(max_ppe_iterations, r.ppe_iterations);
     max_density_error = std::max(max_density_error, r.max_density_error);
     wall_returned_particles += r.wall_returned_particles;
+    ppe_twin_failures += r.ppe_twin_failed ? 1 : 0;
     particle_steps += static_cast<double>(r.particles);
     ++limiting[limit];
   }
@@ -220,7 +222,8 @@ struct RunStatistics {
   [[nodiscard]] nlohmann::json to_json() const {
     nlohmann::json j{{"steps", steps}, {"max_dt", max_dt}, {"ppe_iterations", ppe_iterations},
                      {"max_ppe_iterations", max_ppe_iterations}, {"max_density_error", max_density_error},
-                     {"wall_returned_particles", wall_returned_particles}, {"particle_steps", particle_steps},
+                     {"wall_returned_particles", wall_returned_particles},
+                     {"ppe_twin_failures", ppe_twin_failures}, {"particle_steps", particle_steps},
                      {"simulated", simulated}, {"limiting", limiting}};
     if (std::isfinite(min_dt)) j["min_dt"] = min_dt;
     return j;
@@ -234,6 +237,7 @@ struct RunStatistics {
     s.max_ppe_iterations = j.at("max_ppe_iterations").get<int>();
     s.max_density_error = j.at("max_density_error").get<double>();
     s.wall_returned_particles = j.value("wall_returned_particles", 0LL);  // not in older checkpoints
+    s.ppe_twin_failures = j.value("ppe_twin_failures", 0LL);              // nor this
     s.particle_steps = j.at("particle_steps").get<double>();
     s.simulated = j.at("simulated").get<double>();
     s.limiting = j.at("limiting").get<std::map<std::string, long long>>();
@@ -449,6 +453,8 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
             {"time_step_limited_by", stats.limiting},
             {"ppe_iterations", {{"mean", static_cast<double>(stats.ppe_iterations) / std::max<long long>(stats.steps, 1)},
                                 {"max", stats.max_ppe_iterations}}},
+            // Steps solved again with the operator's hierarchy (pressure_poisson.hpp).
+            {"ppe_twin_failures", stats.ppe_twin_failures},
             {"max_density_error", stats.max_density_error},
             {"wall_returned_particles", stats.wall_returned_particles},  // wall_crossings.hpp
             {"overflow", {{"particles", solver.removed_count()}, {"volume_m3", solver.removed_volume()}}},

@@ -19,9 +19,9 @@ struct FluidModel {
   double density_error_weight = 0.01;
   /// beta: particles with rho* < beta rho0 are on the free surface (P = 0).
   double free_surface_threshold = 0.97;
-  /// BoomerAMG's hierarchy is built on the PPE operator's pairs within this
-  /// many L0 (rescaled; pressure_poisson.hpp); 0: on the operator itself.
-  double preconditioner_radius = 1.8;
+  /// > 0: BoomerAMG's hierarchy is built on the PPE operator's pairs within
+  /// this many L0 (rescaled; pressure_poisson.hpp); 0: on the operator itself.
+  double preconditioner_radius = 0.0;
   bool shifting = true;
   double shifting_coefficient = 2.0;  ///< A in D = A h |v|max dt (Lind et al. 2012)
 

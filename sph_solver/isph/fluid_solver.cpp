@@ -462,6 +462,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
       const auto solved = ppe_.solve(n, mass, density, index, dirichlet, source, pressure);
       report.ppe_iterations = solved.iterations;
       report.ppe_residual = solved.residual_norm;
+      report.ppe_twin_failed = solved.twin_failed;
     } catch (const std::runtime_error& e) {
       throw std::runtime_error(step_prefix(t) + e.what());
     }

@@ -57,6 +57,9 @@ struct StepReport {
   double time_step = 0.0;
   int ppe_iterations = 0;
   double ppe_residual = 0.0;
+  /// The pressure solve failed with BoomerAMG on the operator's twin and was
+  /// solved with the operator's hierarchy (pressure_poisson.hpp).
+  bool ppe_twin_failed = false;
   long long free_surface_particles = 0;  ///< all ranks
   long long removed_particles = 0;       ///< this step, all ranks
   long long wall_returned_particles = 0; ///< this step, all ranks: put back in front of a wall (wall_crossings.hpp)

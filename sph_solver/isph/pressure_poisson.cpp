@@ -240,11 +240,14 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   create_solver();
   solved_size_ = owned;
   check(KSPSetOperators(ksp_, matrix_, preconditioning_matrix()), "KSPSetOperators");
+  // With the twin, convergence is judged on the operator's own residual: the
+  // preconditioned residual of a twin that went singular can be small while
+  // the operator's is not (measured: a floating pair, tests/unit/sph).
+  if (twin_ != nullptr) check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
 }
 
-PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure,
-                                                double residual_floor) {
-  if (matrix_ == nullptr) throw std::logic_error("PressurePoisson::solve_assembled before assemble");
+PressurePoisson::Attempt PressurePoisson::attempt(std::span<const double> source, std::span<double> pressure,
+                                                  double residual_floor) {
   const int owned = solved_size_;
   Vec rhs = nullptr;
   Vec solution = nullptr;
@@ -271,16 +274,15 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
   if (floored) check(KSPSetTolerances(ksp_, rtol, residual_floor, dtol, max_iterations), "KSPSetTolerances");
   // Not handled: an error raised on some ranks only leaves the others inside
   // the solve's collectives (the job hangs); convergence failures are collective.
-  const PetscErrorCode solve_code = KSPSolve(ksp_, rhs, solution);
+  Attempt result;
+  result.code = KSPSolve(ksp_, rhs, solution);
   if (floored) check(KSPSetTolerances(ksp_, rtol, atol, dtol, max_iterations), "KSPSetTolerances");
-  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-  PpeSolveReport report;
   PetscInt iterations = 0;
-  KSPGetConvergedReason(ksp_, &reason);
+  KSPGetConvergedReason(ksp_, &result.reason);
   KSPGetIterationNumber(ksp_, &iterations);
-  KSPGetResidualNorm(ksp_, &report.residual_norm);
-  report.iterations = static_cast<int>(iterations);
-  if (solve_code == 0 && reason > 0) {
+  KSPGetResidualNorm(ksp_, &result.report.residual_norm);
+  result.report.iterations = static_cast<int>(iterations);
+  if (result.code == 0 && result.reason > 0) {
     const PetscScalar* x = nullptr;
     VecGetArrayRead(solution, &x);
     for (int i = 0; i < owned; ++i) pressure[at(i)] = x[i];
@@ -288,12 +290,31 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
   }
   VecDestroy(&rhs);
   VecDestroy(&solution);
-  if (solve_code != 0) throw std::runtime_error("pressure solver failed with PETSc error " + std::to_string(solve_code));
-  if (reason <= 0)
-    throw std::runtime_error(std::string("pressure solver did not converge: ") + KSPConvergedReasons[reason] +
-                             " after " + std::to_string(report.iterations) + " iterations, residual " +
-                             std::to_string(report.residual_norm));
-  return report;
+  return result;
+}
+
+PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure,
+                                                double residual_floor) {
+  if (matrix_ == nullptr) throw std::logic_error("PressurePoisson::solve_assembled before assemble");
+  Attempt result = attempt(source, pressure, residual_floor);
+  bool twin_failed = false;
+  if (result.code == 0 && result.reason <= 0 && twin_ != nullptr) {
+    // The twin's hierarchy failed (pressure_poisson.hpp): the operator's takes
+    // this solve and the step's others.
+    MatDestroy(&twin_);
+    create_solver();
+    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    result = attempt(source, pressure, residual_floor);
+    twin_failed = true;
+  }
+  if (result.code != 0)
+    throw std::runtime_error("pressure solver failed with PETSc error " + std::to_string(result.code));
+  if (result.reason <= 0)
+    throw std::runtime_error(std::string("pressure solver did not converge: ") + KSPConvergedReasons[result.reason] +
+                             " after " + std::to_string(result.report.iterations) + " iterations, residual " +
+                             std::to_string(result.report.residual_norm));
+  result.report.twin_failed = twin_failed;
+  return result.report;
 }
 
 }  // namespace tankfsi::sph

@@ -21,15 +21,26 @@
 // columns are left out of the other rows (value 0 moved to the right-hand side),
 // which keeps the matrix symmetric.
 //
-// BoomerAMG is built on a sparser twin of the operator: the pairs closer than
-// FluidModel::preconditioner_radius (1.8 L0: the lattice's first two shells,
+// With FluidModel::preconditioner_radius > 0 (not the default) BoomerAMG is
+// built on a sparser twin of the operator: the pairs closer than that radius
+// (1.8 L0: the lattice's first two shells,
 // 9 entries a row in 2D and 27 in 3D instead of 37 and 93 at h = 1.2 L0), their weights
 // scaled by the ratio of the full to the kept second moments sum a_ij r_ij^2
 // (over all rows) so that the twin's Laplacian of a quadratic field is the
 // operator's, and the same air share on the diagonal. CG still solves the
 // operator itself (to its tolerance); the hierarchy of the sparser matrix costs
 // less to set up and to apply, for about as many iterations
-// (cases/dam_break_2d/README.md).
+// (cases/dam_break_2d/README.md). The twin is not the operator: a group of
+// particles that only pairs longer than the radius tie to the rest of the
+// liquid, and that no air touches, floats in the twin (its rows sum to zero):
+// seen after a dam break's impact, where CG stopped with an indefinite
+// preconditioner. A solve that fails with the twin's hierarchy is solved again
+// from the same start with the operator's, and the step reports it. In that
+// run (L0 = 0.01 m, 2 s) the operator's solve of that state then gave a
+// particle 6,000 m/s and the run stopped, where the run without the twin
+// (another path after the impact, through the solver's tolerance) ends: hence
+// not the default. (That run judged convergence on the preconditioned
+// residual; with the twin it is now the operator's own: assemble().)
 #include <mpi.h>
 #include <petscksp.h>
 
@@ -43,8 +54,10 @@
 namespace tankfsi::sph {
 
 struct PpeSolveReport {
-  int iterations = 0;
+  int iterations = 0;          ///< of the solve that converged
   double residual_norm = 0.0;  ///< the KSP's final residual norm
+  /// The twin's hierarchy broke CG down and the operator's solved it (below).
+  bool twin_failed = false;
 };
 
 /// One off-diagonal entry of a PPE row while it is assembled.
@@ -112,6 +125,14 @@ class PressurePoisson {
   void create_solver();
   /// A new distributed matrix holding `rows` (owned rows from `first_row`).
   [[nodiscard]] Mat create_matrix(const Rows& rows, PetscInt first_row) const;
+  /// One KSP solve from `pressure`; the converged reason (collective) and the
+  /// error code are in the result, the pressure updated only on success.
+  struct Attempt {
+    PetscErrorCode code = 0;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    PpeSolveReport report;
+  };
+  [[nodiscard]] Attempt attempt(std::span<const double> source, std::span<double> pressure, double residual_floor);
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   bool multigrid_ = false;  ///< BoomerAMG: its hierarchy is built on the twin
