@@ -40,7 +40,8 @@
 // particle 6,000 m/s and the run stopped, where the run without the twin
 // (another path after the impact, through the solver's tolerance) ends: hence
 // not the default. (That run judged convergence on the preconditioned
-// residual; with the twin it is now the operator's own: assemble().)
+// residual; with the twin it is now the operator's own (assemble()), and
+// the same 2 s run then ends.)
 #include <mpi.h>
 #include <petscksp.h>
 
