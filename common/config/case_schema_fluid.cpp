@@ -49,10 +49,10 @@ std::vector<KeySpec> fluid_keys() {
                "0: BoomerAMG (the default preconditioner) is built on the pressure operator. Otherwise (at "
                "least 1, e.g. 1.8) on a sparser twin: the particle pairs within this many particle spacings, "
                "their weights scaled so that the twin's Laplacian of a quadratic field is the operator's. The "
-               "solution is the operator's either way (to the solver's tolerance); the twin's hierarchy costs "
-               "less (the 2D dam break: a tenth to a quarter of the solve's time) but a step where it fails "
-               "is solved again with the operator's, and the changed path made the dam break at L0 = 0.01 m "
-               "stop after its impact (cases/dam_break_2d/README.md).")
+               "solution is the operator's either way (to the operator's own residual); the twin's hierarchy "
+               "costs less (the 2D dam break: 9-23 % less solve time), and a step where it fails is "
+               "solved again with the operator's. Not the default: tried on few cases so far "
+               "(cases/dam_break_2d/README.md).")
           .default_is("0").at_least(0).at_most(10),
       text_key("fluid.ppe.solver_options",
                "PETSc options for the pressure solver (prefix -ppe_; without them CG with hypre BoomerAMG, "

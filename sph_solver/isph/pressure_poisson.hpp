@@ -23,25 +23,19 @@
 //
 // With FluidModel::preconditioner_radius > 0 (not the default) BoomerAMG is
 // built on a sparser twin of the operator: the pairs closer than that radius
-// (1.8 L0: the lattice's first two shells,
-// 9 entries a row in 2D and 27 in 3D instead of 37 and 93 at h = 1.2 L0), their weights
-// scaled by the ratio of the full to the kept second moments sum a_ij r_ij^2
-// (over all rows) so that the twin's Laplacian of a quadratic field is the
-// operator's, and the same air share on the diagonal. CG still solves the
-// operator itself (to its tolerance); the hierarchy of the sparser matrix costs
-// less to set up and to apply, for about as many iterations
-// (cases/dam_break_2d/README.md). The twin is not the operator: a group of
-// particles that only pairs longer than the radius tie to the rest of the
-// liquid, and that no air touches, floats in the twin (its rows sum to zero):
-// seen after a dam break's impact, where CG stopped with an indefinite
-// preconditioner. A solve that fails with the twin's hierarchy is solved again
-// from the same start with the operator's, and the step reports it. In that
-// run (L0 = 0.01 m, 2 s) the operator's solve of that state then gave a
-// particle 6,000 m/s and the run stopped, where the run without the twin
-// (another path after the impact, through the solver's tolerance) ends: hence
-// not the default. (That run judged convergence on the preconditioned
-// residual; with the twin it is now the operator's own (assemble()), and
-// the same 2 s run then ends.)
+// (1.8 L0: the lattice's first two shells, 9 entries a row in 2D and 27 in 3D
+// instead of 37 and 93 at h = 1.2 L0), their weights scaled by the ratio of
+// the full to the kept second moments sum a_ij r_ij^2 (over all rows) so that
+// the twin's Laplacian of a quadratic field is the operator's, and the same
+// air share on the diagonal. CG still solves the operator: the twin's
+// hierarchy costs less to set up and apply than the operator's, for more
+// iterations (measured: README.md). The twin is not the operator: a group of
+// particles that only pairs longer than the radius tie to the rest, and that
+// no air touches, floats in it (its rows sum to zero). Its preconditioned
+// residual then says little of the operator's, so with the twin CG is judged
+// on the operator's own residual; and a solve that fails with the twin's
+// hierarchy is solved again from the same start with the operator's, which
+// the step reports.
 #include <mpi.h>
 #include <petscksp.h>
 
@@ -57,7 +51,7 @@ namespace tankfsi::sph {
 struct PpeSolveReport {
   int iterations = 0;          ///< of the solve that converged
   double residual_norm = 0.0;  ///< the KSP's final residual norm
-  /// The twin's hierarchy broke CG down and the operator's solved it (below).
+  /// The solve failed with the twin's hierarchy and the operator's solved it (below).
   bool twin_failed = false;
 };
 
@@ -136,7 +130,7 @@ class PressurePoisson {
   [[nodiscard]] Attempt attempt(std::span<const double> source, std::span<double> pressure, double residual_floor);
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
-  bool multigrid_ = false;  ///< BoomerAMG: its hierarchy is built on the twin
+  bool multigrid_ = false;  ///< BoomerAMG, whose hierarchy may be built on a twin
   int solved_size_ = -1;    ///< local rows of the assembled operator
   Mat matrix_ = nullptr;    ///< the last assembled operator
   Mat twin_ = nullptr;      ///< its sparser twin for the preconditioner (or none)
@@ -144,7 +138,7 @@ class PressurePoisson {
   Rows operator_rows_;
   Rows twin_rows_;
   std::vector<RowEntry> entries_;  ///< one row's off-diagonal entries
-  std::vector<double> twin_air_;           ///< each twin row's air share (added after scaling)
+  std::vector<double> twin_air_;   ///< each twin row's air share (added after scaling)
 };
 
 
