@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Fluid benchmark: runs sph_solver on benchmark cases and writes their figures.
 
-Usage: fluid_bench.py --solver build/bin/sph_solver --output bench/fluid [--quick]
+Usage: fluid_bench.py --solver build/bin/sph_solver --output bench/fluid [--quick] [--case NAME ...]
 
 For each case and rank count it records: particles, steps, particle-steps per
 second, wall seconds per simulated second, the share of each stage (neighbours,
@@ -16,10 +16,16 @@ Full set (a workstation or a cluster node; tens of minutes to hours):
   L0 chosen for >= 100k particles; each on 1 and 2 ranks.
 --quick (what a 2-core machine does in minutes): 2D dam break at L0 = 0.02 m for
   0.3 s on 1 and 2 ranks.
+--case NAME (repeatable): only these cases of the set.
+A measured case's rows replace its earlier rows in OUTPUT's files and the other
+cases' rows stay (the set can be measured a case at a time); each row names the
+date and the commit it was measured on.
 """
 import argparse
+import datetime
 import json
 import pathlib
+import subprocess
 import tempfile
 
 from measured_run import measured_run
@@ -57,29 +63,20 @@ def run(solver, case, settings, ranks, folder):
     }
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--solver", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--quick", action="store_true")
-    args = parser.parse_args()
-    out = pathlib.Path(args.output)
-    out.mkdir(parents=True, exist_ok=True)
-    figures = {}
-    with tempfile.TemporaryDirectory() as scratch:
-        for name, case, settings in QUICK if args.quick else FULL:
-            figures[name] = []
-            for ranks in (1, 2):
-                folder = pathlib.Path(scratch) / f"{name}-{ranks}"
-                figures[name].append(run(args.solver, case, settings, ranks, folder))
-                if figures[name][-1]["particles"] < MINIMUM_PARTICLES.get(name, 0):
-                    raise SystemExit(f"fluid_bench: {name} has {figures[name][-1]['particles']} particles, "
-                                     f"fewer than the {MINIMUM_PARTICLES[name]} it is meant to measure")
-                print(name, figures[name][-1], flush=True)
+def commit():
+    """The checkout's commit, marked when the tree has changes of its own."""
+    def git(*words):
+        return subprocess.run(["git", *words], cwd=pathlib.Path(__file__).parent, capture_output=True, text=True).stdout
+    head = git("rev-parse", "--short", "HEAD").strip() or "unknown"
+    return head + ("+changes" if git("status", "--porcelain", "--untracked-files=no").strip() else "")
+
+
+def write(out, figures):
+    """Writes OUTPUT/fluid_figures.json and the Markdown table of the same rows."""
     (out / "fluid_figures.json").write_text(json.dumps(figures, indent=2))
     lines = ["| case | ranks | particles | steps | particle-steps/s | wall s / sim s | PPE it. mean/max | "
-             "neighbours | ppe_assemble | ppe_solve | predictor | corrector | KiB/particle |",
-             "|" + "---|" * 13]
+             "neighbours | ppe_assemble | ppe_solve | predictor | corrector | KiB/particle | measured |",
+             "|" + "---|" * 14]
     for name, rows in figures.items():
         for r in rows:
             share = r["stage_share"]
@@ -87,9 +84,41 @@ def main():
                          f"{r['wall_s_per_simulated_s']:.3g} | {r['ppe_iterations_mean']:.1f}/{r['ppe_iterations_max']} | "
                          + " | ".join(f"{100 * share.get(s, 0):.0f} %" for s in
                                       ("neighbours", "ppe_assemble", "ppe_solve", "predictor", "corrector"))
-                         + f" | {r['peak_memory_per_particle_kib']:.2f} |")
+                         + f" | {r['peak_memory_per_particle_kib']:.2f} | "
+                         f"{r.get('date', 'before 2026-12-05')} {r.get('commit', '')} |")
     (out / "fluid_figures.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--solver", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--case", action="append", default=[], help="only this case of the set (repeatable)")
+    args = parser.parse_args()
+    chosen = QUICK if args.quick else FULL
+    unknown = sorted(set(args.case) - {name for name, _, _ in chosen})
+    if unknown:
+        parser.error(f"unknown case {', '.join(unknown)} (this set has: {', '.join(n for n, _, _ in chosen)})")
+    if args.case:
+        chosen = [c for c in chosen if c[0] in args.case]
+    out = pathlib.Path(args.output)
+    out.mkdir(parents=True, exist_ok=True)
+    earlier = out / "fluid_figures.json"
+    figures = json.loads(earlier.read_text()) if earlier.exists() else {}
+    measured = {"date": datetime.date.today().isoformat(), "commit": commit()}
+    with tempfile.TemporaryDirectory() as scratch:
+        for name, case, settings in chosen:
+            figures[name] = []
+            for ranks in (1, 2):
+                folder = pathlib.Path(scratch) / f"{name}-{ranks}"
+                figures[name].append(run(args.solver, case, settings, ranks, folder) | measured)
+                if figures[name][-1]["particles"] < MINIMUM_PARTICLES.get(name, 0):
+                    raise SystemExit(f"fluid_bench: {name} has {figures[name][-1]['particles']} particles, "
+                                     f"fewer than the {MINIMUM_PARTICLES[name]} it is meant to measure")
+                print(name, figures[name][-1], flush=True)
+            write(out, figures)  # each finished case, so a stopped set keeps what it measured
 
 
 if __name__ == "__main__":
