@@ -15,6 +15,7 @@
 #include "fem_solver/app/structure_output.hpp"
 #include "fem_solver/mesh/shell_surfaces.hpp"
 #include "patch_meshes.hpp"
+#include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::fem;
 
@@ -144,13 +145,15 @@ TEST_CASE("CG with smoothed aggregation (GAMG) and the rigid-body near-null spac
   StructureSystem system(MPI_COMM_WORLD, cylinder_model(), constraints);
   const StaticResult direct = solve_static(system, cylinder_loads(model.mesh));
   REQUIRE(direct.solver == "preonly/cholesky(mumps)");
-  // The option the issue names: -shell_ksp_type cg -shell_pc_type gamg (from
-  // the command line or structure.solver_options), removed again after.
-  PetscOptionsSetValue(nullptr, "-shell_ksp_type", "cg");
-  PetscOptionsSetValue(nullptr, "-shell_pc_type", "gamg");
-  const StaticResult iterative = solve_static(system, cylinder_loads(model.mesh));
-  PetscOptionsClearValue(nullptr, "-shell_ksp_type");
-  PetscOptionsClearValue(nullptr, "-shell_pc_type");
+  // The options -shell_ksp_type cg -shell_pc_type gamg (from the command line
+  // or structure.solver_options), in this test's own options database.
+  StaticResult iterative;
+  {
+    const tankfsi::test::PetscOptionsScope options;
+    PetscOptionsSetValue(nullptr, "-shell_ksp_type", "cg");
+    PetscOptionsSetValue(nullptr, "-shell_pc_type", "gamg");
+    iterative = solve_static(system, cylinder_loads(model.mesh));
+  }
   CHECK(iterative.solver == "cg/gamg");
   CHECK(iterative.iterations > 0);
   // The six rigid-body modes that GAMG's aggregates represent keep CG to a

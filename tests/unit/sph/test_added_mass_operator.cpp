@@ -21,6 +21,7 @@
 
 #include "sph_solver/isph/fluid_solver.hpp"
 #include "tests/unit/sph/still_tank.hpp"
+#include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::sph;
 
@@ -73,6 +74,7 @@ TEST_CASE("the added-mass operator of a tank's side wall matches potential flow"
   const FluidModel& model = tank.model;
   const double width = tankfsi::test::width, level = tankfsi::test::level;
   const TriangleMesh& walls = tank.walls.mesh();
+  const tankfsi::test::PetscOptionsScope options;
   FluidSolver solver(MPI_COMM_WORLD, model, walls, tank.particles, domain_around(walls), "-ppe_ksp_rtol 1e-10");
   const SideWall side(walls);
   const std::vector<int>& wall = side.vertices;
@@ -113,6 +115,7 @@ TEST_CASE("a wall velocity jump's impulse is the operator's and the step's force
           "[added_mass]") {
   const tankfsi::test::Tank tank;
   const TriangleMesh& walls = tank.walls.mesh();
+  const tankfsi::test::PetscOptionsScope options;
   FluidSolver solver(MPI_COMM_WORLD, tank.model, walls, tank.particles, domain_around(walls), "-ppe_ksp_rtol 1e-12");
   const SideWall side(walls);
   const std::vector<int>& wall = side.vertices;
@@ -177,6 +180,7 @@ TEST_CASE("the added-mass operator of a cylindrical tank's wall matches potentia
   const tankfsi::test::OilCylinder tank;
   const TriangleMesh& walls = tank.walls;
   const double radius = tank.radius, depth = tank.depth;
+  const tankfsi::test::PetscOptionsScope options;
   FluidSolver solver(MPI_COMM_WORLD, tank.model, walls, tank.particles, domain_around(walls), "-ppe_ksp_rtol 1e-10");
   std::vector<int> wall;
   std::vector<Eigen::Vector3d> normals;

@@ -14,6 +14,7 @@
 #include "sph_solver/particles/filling.hpp"
 #include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
+#include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::sph;
 using Catch::Matchers::Contains;
@@ -21,6 +22,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 struct SolverTank {
+  tankfsi::test::PetscOptionsScope options;  // the solvers' options, this test's alone
   FluidModel model = tankfsi::test::water();
   TriangleMesh walls = make_rectangular_tank_2d(0.6, 0.6, 0.2, 0.04);
   Particles particles;

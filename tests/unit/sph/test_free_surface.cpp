@@ -28,6 +28,7 @@
 #include "sph_solver/isph/pressure_poisson.hpp"
 #include "sph_solver/walls/primitive_meshes.hpp"
 #include "still_tank.hpp"
+#include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::sph;
 using Eigen::Vector3d;
@@ -84,6 +85,7 @@ double worst_hydrostatic_ppe_error(const StillLiquid3d& liquid, double depth) {
   std::vector<std::int64_t> index(at(n));
   for (int i = 0; i < n; ++i) index[at(i)] = i;
   std::vector<double> pressure(at(n), 0.0);
+  const PetscOptionsScope options;
   PressurePoisson ppe(MPI_COMM_SELF, "-ppe_ksp_rtol 1e-12");
   ppe.solve(liquid.view(), liquid.particles.mass, liquid.completed, index, std::vector<unsigned char>(at(n), 0), source,
             pressure);
@@ -165,6 +167,7 @@ TEST_CASE("with the air the hydrostatic pressure solves the PPE up to the surfac
   for (int i = 0; i < n; ++i) index[at(i)] = i;
   std::vector<double> pressure(at(n), 0.0);
   const std::vector<unsigned char> no_dirichlet(at(n), 0);
+  const PetscOptionsScope options;
   PressurePoisson ppe(MPI_COMM_SELF, "-ppe_ksp_rtol 1e-12");
   ppe.solve(view, tank.particles.mass, tank.completed, index, no_dirichlet, source, pressure);
   double worst_top = 0.0, worst_below = 0.0, worst_side = 0.0;

@@ -21,6 +21,7 @@
 #include "sph_solver/isph/particle_terms.hpp"
 #include "sph_solver/isph/pressure_poisson.hpp"
 #include "still_tank.hpp"
+#include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::sph;
 using Eigen::Vector3d;
@@ -111,6 +112,7 @@ TEST_CASE("the PPE solve recovers a manufactured pressure", "[isph]") {
   for (int i = 0; i < n; ++i) index[static_cast<std::size_t>(i)] = i;
   std::vector<double> pressure(static_cast<std::size_t>(n), 0.0);
   // The operator is what is checked here: the solver held to rtol 1e-8.
+  const PetscOptionsScope options;
   PressurePoisson ppe(MPI_COMM_SELF, "-ppe_ksp_rtol 1e-8");
   const auto report = ppe.solve(tank.view(), tank.particles.mass, tank.density, index, dirichlet, source, pressure);
   double worst = 0.0;
@@ -171,14 +173,7 @@ std::string setting_line(const std::string& settings, const std::string& setting
 }  // namespace
 
 TEST_CASE("the PPE's BoomerAMG takes the cheap hierarchy unless the case sets its own", "[isph]") {
-  // The options live in PETSc's global database: each section clears what it set.
-  const char* names[] = {"-ppe_pc_hypre_boomeramg_coarsen_type", "-ppe_pc_hypre_boomeramg_interp_type",
-                         "-ppe_pc_hypre_boomeramg_P_max", "-ppe_pc_hypre_boomeramg_strong_threshold",
-                         "-ppe_pc_hypre_boomeramg_agg_nl", "-ppe_pc_type"};
-  const auto clear = [&names] {
-    for (const char* name : names) PetscOptionsClearValue(nullptr, name);
-  };
-  clear();
+  const PetscOptionsScope options;  // each section starts from an empty database
   SECTION("by default") {
     const std::string settings = PressurePoisson(MPI_COMM_SELF, "").settings();
     INFO(settings);
@@ -201,7 +196,6 @@ TEST_CASE("the PPE's BoomerAMG takes the cheap hierarchy unless the case sets it
     PetscOptionsHasName(nullptr, nullptr, "-ppe_pc_hypre_boomeramg_coarsen_type", &set);
     CHECK(set == PETSC_FALSE);
   }
-  clear();
 }
 
 namespace {
@@ -292,10 +286,10 @@ TEST_CASE("BoomerAMG's twin of the PPE operator: two shells a row, the operator'
     without.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
     CHECK(without.preconditioning_matrix() == without.operator_matrix());
     tank.model.preconditioner_radius = 1.8;
+    const PetscOptionsScope options;
     PressurePoisson jacobi(MPI_COMM_SELF, "-ppe_pc_type jacobi");
     jacobi.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
     CHECK(jacobi.preconditioning_matrix() == jacobi.operator_matrix());
-    PetscOptionsClearValue(nullptr, "-ppe_pc_type");
   }
 }
 
@@ -323,6 +317,7 @@ TEST_CASE("with a singular twin, the PPE still solves the operator to its own re
   const std::vector<unsigned char> dirichlet{1, 0, 0};
   const std::vector<double> source{0.0, -1.0e6, -2.0e6};
   std::vector<double> pressure(3, 0.0);
+  const PetscOptionsScope options;
   PressurePoisson ppe(MPI_COMM_SELF, "-ppe_ksp_rtol 1e-12");
   ppe.assemble(n, mass, density, index, dirichlet);
   REQUIRE(ppe.preconditioning_matrix() != ppe.operator_matrix());
@@ -331,4 +326,54 @@ TEST_CASE("with a singular twin, the PPE still solves the operator to its own re
   const auto residual = pressure_laplacian(n, mass, density, pressure);
   CHECK(residual[1] == Approx(source[1]).epsilon(1e-9));
   CHECK(residual[2] == Approx(source[2]).epsilon(1e-9));
+}
+
+TEST_CASE("a solve the twin's hierarchy fails is solved again with the operator's, and says so", "[isph]") {
+  // The manufactured problem of the tank (Dirichlet band at the walls and the
+  // surface). The twin's hierarchy takes more CG iterations than the
+  // operator's; capped at the operator's count, the solve with the twin fails
+  // (DIVERGED_ITS), and the fallback must give the operator's own solve: the
+  // same iterations and, from the same start, the same pressure bit for bit.
+  Tank tank;
+  const int n = tank.particles.count();
+  std::vector<unsigned char> dirichlet(static_cast<std::size_t>(n));
+  std::vector<double> exact(static_cast<std::size_t>(n), 0.0);
+  std::vector<std::int64_t> index(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    index[k] = i;
+    dirichlet[k] = tank.submerged(i) && !tank.near_floor(i) && !tank.near_side(i) ? 0 : 1;
+    const Vector3d& x = tank.particles.position[k];
+    if (dirichlet[k] == 0) exact[k] = 1000.0 + 2.0e4 * x.x() * x.y();
+  }
+  const auto source = pressure_laplacian(tank.view(), tank.particles.mass, tank.density, exact);
+  struct Solved {
+    PpeSolveReport report;
+    std::vector<double> pressure;
+    bool operator_preconditions;
+  };
+  const auto solve = [&](double radius, const std::string& options) {
+    const PetscOptionsScope scope;
+    tank.model.preconditioner_radius = radius;
+    PressurePoisson ppe(MPI_COMM_SELF, options);
+    Solved s{{}, std::vector<double>(static_cast<std::size_t>(n), 0.0), false};
+    ppe.assemble(tank.view(), tank.particles.mass, tank.density, index, dirichlet);
+    s.report = ppe.solve_assembled(source, s.pressure);
+    s.operator_preconditions = ppe.preconditioning_matrix() == ppe.operator_matrix();
+    return s;
+  };
+  const Solved by_operator = solve(0.0, "-ppe_ksp_rtol 1e-8");
+  const Solved by_twin = solve(1.8, "-ppe_ksp_rtol 1e-8");
+  INFO("CG iterations: " << by_operator.report.iterations << " with the operator's hierarchy, "
+                         << by_twin.report.iterations << " with the twin's");
+  CHECK_FALSE(by_twin.report.twin_failed);
+  CHECK_FALSE(by_twin.operator_preconditions);
+  REQUIRE(by_twin.report.iterations > by_operator.report.iterations);  // else no cap fails the twin alone
+
+  const Solved capped =
+      solve(1.8, "-ppe_ksp_rtol 1e-8 -ppe_ksp_max_it " + std::to_string(by_operator.report.iterations));
+  CHECK(capped.report.twin_failed);
+  CHECK(capped.operator_preconditions);  // and for the step's further solves
+  CHECK(capped.report.iterations == by_operator.report.iterations);
+  CHECK(capped.pressure == by_operator.pressure);
 }

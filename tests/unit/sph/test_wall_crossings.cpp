@@ -17,6 +17,7 @@
 #include "sph_solver/walls/tank_meshes.hpp"
 #include "tests/unit/sph/still_tank.hpp"
 #include "tests/unit/sph/two_sided_sheet.hpp"
+#include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::sph;
 using Eigen::Vector3d;
@@ -102,6 +103,7 @@ TEST_CASE("a step that carries a particle a little past the floor puts it back a
   Eigen::AlignedBox3d domain = walls.bounding_box();
   domain.min().array() -= 2.0;
   domain.max().array() += 2.0;
+  const tankfsi::test::PetscOptionsScope options;
   FluidSolver solver(MPI_COMM_WORLD, model, walls, particles, domain, "-ppe_ksp_rtol 1e-10");
   const StepReport report = solver.step(0.0, 1e-3, Vector3d::Zero());
   CHECK(report.wall_returned_particles >= 1);
