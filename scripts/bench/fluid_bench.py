@@ -16,10 +16,11 @@ Full set (a workstation or a cluster node; tens of minutes to hours):
   L0 chosen for >= 100k particles; each on 1 and 2 ranks.
 --quick (what a 2-core machine does in minutes): 2D dam break at L0 = 0.02 m for
   0.3 s on 1 and 2 ranks.
---case NAME (repeatable): only these cases of the set.
-A measured case's rows replace its earlier rows in OUTPUT's files and the other
-cases' rows stay (the set can be measured a case at a time); each row names the
-date and the commit it was measured on.
+--case NAME (repeatable): only these cases of the set; --ranks 2: only these
+rank counts (comma-separated; default 1,2).
+A measured row replaces the earlier row of its case and rank count in OUTPUT's
+files and the other rows stay (the set can be measured a piece at a time);
+each row names the date and the commit it was measured on.
 """
 import argparse
 import datetime
@@ -96,6 +97,7 @@ def main():
     parser.add_argument("--output", required=True)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--case", action="append", default=[], help="only this case of the set (repeatable)")
+    parser.add_argument("--ranks", default="1,2", help="rank counts to measure, comma-separated (default 1,2)")
     args = parser.parse_args()
     chosen = QUICK if args.quick else FULL
     unknown = sorted(set(args.case) - {name for name, _, _ in chosen})
@@ -103,6 +105,12 @@ def main():
         parser.error(f"unknown case {', '.join(unknown)} (this set has: {', '.join(n for n, _, _ in chosen)})")
     if args.case:
         chosen = [c for c in chosen if c[0] in args.case]
+    try:
+        rank_counts = [int(r) for r in args.ranks.split(",")]
+    except ValueError:
+        parser.error(f"--ranks: '{args.ranks}' is not a comma-separated list of rank counts")
+    if not rank_counts or min(rank_counts) < 1:
+        parser.error(f"--ranks: '{args.ranks}' needs rank counts of at least 1")
     out = pathlib.Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     earlier = out / "fluid_figures.json"
@@ -110,15 +118,16 @@ def main():
     measured = {"date": datetime.date.today().isoformat(), "commit": commit()}
     with tempfile.TemporaryDirectory() as scratch:
         for name, case, settings in chosen:
-            figures[name] = []
-            for ranks in (1, 2):
+            for ranks in rank_counts:
                 folder = pathlib.Path(scratch) / f"{name}-{ranks}"
-                figures[name].append(run(args.solver, case, settings, ranks, folder) | measured)
-                if figures[name][-1]["particles"] < MINIMUM_PARTICLES.get(name, 0):
-                    raise SystemExit(f"fluid_bench: {name} has {figures[name][-1]['particles']} particles, "
+                row = run(args.solver, case, settings, ranks, folder) | measured
+                if row["particles"] < MINIMUM_PARTICLES.get(name, 0):
+                    raise SystemExit(f"fluid_bench: {name} has {row['particles']} particles, "
                                      f"fewer than the {MINIMUM_PARTICLES[name]} it is meant to measure")
-                print(name, figures[name][-1], flush=True)
-            write(out, figures)  # each finished case, so a stopped set keeps what it measured
+                print(name, row, flush=True)
+                rows = [r for r in figures.get(name, []) if r["ranks"] != ranks] + [row]
+                figures[name] = sorted(rows, key=lambda r: r["ranks"])
+                write(out, figures)  # after each run, so a stopped set keeps what it measured
 
 
 if __name__ == "__main__":
