@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Fluid benchmark: runs sph_solver on benchmark cases and writes their figures.
 
-Usage: fluid_bench.py --solver build/bin/sph_solver --output bench/fluid [--quick] [--case NAME ...]
+Usage: fluid_bench.py --solver build/bin/sph_solver --output bench/fluid [--quick] [--case NAME ...] [--ranks 1,2]
 
 For each case and rank count it records: particles, steps, particle-steps per
 second, wall seconds per simulated second, the share of each stage (neighbours,
@@ -86,7 +86,7 @@ def write(out, figures):
                          + " | ".join(f"{100 * share.get(s, 0):.0f} %" for s in
                                       ("neighbours", "ppe_assemble", "ppe_solve", "predictor", "corrector"))
                          + f" | {r['peak_memory_per_particle_kib']:.2f} | "
-                         f"{r.get('date', 'before 2026-12-05')} {r.get('commit', '')} |")
+                         f"{r.get('date', 'date not recorded')} {r.get('commit', '')} |")
     (out / "fluid_figures.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
