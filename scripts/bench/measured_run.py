@@ -3,6 +3,7 @@ the peak resident memory of its largest rank (shared by the benchmark scripts)."
 import json
 import pathlib
 import shlex
+import shutil
 import subprocess
 import sys
 import time
@@ -24,7 +25,15 @@ def measured_run(solver, case, settings, ranks, folder):
     result = subprocess.run([sys.executable, "-c", measure] + command, capture_output=True, text=True)
     elapsed = time.monotonic() - start
     if result.returncode != 0:
-        sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}")
+        # The run folder holds the failed run's last good state (its final
+        # snapshot and checkpoint): kept under runs/, since the benchmark's
+        # scratch folder goes with it.
+        where = "it left no run folder"
+        if pathlib.Path(folder).is_dir():
+            kept = ROOT / "runs" / f"bench-failed-{pathlib.Path(folder).name}-{time.strftime('%Y%m%d-%H%M%S')}"
+            shutil.copytree(folder, kept)
+            where = f"its run folder is kept in {kept}"
+        sys.exit(f"benchmark run failed: {shlex.join(command)}\n{result.stderr[-3000:]}\n{where}")
     peak_kib = int(result.stderr.strip().splitlines()[-1])
     summary = json.loads((pathlib.Path(folder) / "summary.json").read_text())
     return summary, elapsed, peak_kib
