@@ -16,7 +16,7 @@ Full set (a workstation or a cluster node; tens of minutes to hours):
   L0 chosen for >= 100k particles; each on 1 and 2 ranks.
 --quick (what a 2-core machine does in minutes): 2D dam break at L0 = 0.02 m for
   0.3 s on 1 and 2 ranks.
---case NAME (repeatable): only these cases of the set; --ranks 2: only these
+--case NAME (repeatable): only these cases of the set; --ranks LIST: only these
 rank counts (comma-separated; default 1,2).
 A measured row replaces the earlier row of its case and rank count in OUTPUT's
 files and the other rows stay (the set can be measured a piece at a time);
