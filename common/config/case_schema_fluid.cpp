@@ -61,6 +61,12 @@ std::vector<KeySpec> fluid_keys() {
       boolean_key("fluid.shifting.enabled", "Fickian particle shifting (Lind et al. 2012).").default_is("true"),
       real_key("fluid.shifting.coefficient", "Shifting coefficient A of D = A h |v| dt.")
           .default_is("2").at_least(0).only_when("fluid.shifting.enabled", {"true"}),
+      real_key("fluid.shifting.close_pair_distance",
+               "Pairs of particles closer than this many particle spacings after the shift are parted, each "
+               "moved away from the other by half the shortfall (0: never). Where the shift is skipped (at and "
+               "next to the free surface) this is what keeps a thin jet's particles from collapsing onto each "
+               "other (cases/dam_break_2d/README.md).")
+          .default_is("0.5").at_least(0).at_most(1).only_when("fluid.shifting.enabled", {"true"}),
       integer_key("fluid.rebalance_interval",
                   "Steps between re-partitions of the particles over the ranks (and re-sorts in cell order).")
           .default_is("20").at_least(1),

@@ -65,7 +65,12 @@ FluidModel read_model(const CaseConfig& config) {
     throw config.error_at("fluid.ppe.preconditioner_radius",
                           "must be 0 (the operator itself) or at least 1 particle spacing (the nearest neighbours)");
   m.shifting = config.boolean("fluid.shifting.enabled");
-  if (m.shifting) m.shifting_coefficient = config.real("fluid.shifting.coefficient");
+  if (m.shifting) {
+    m.shifting_coefficient = config.real("fluid.shifting.coefficient");
+    m.close_pair_distance = config.real("fluid.shifting.close_pair_distance");
+  } else {
+    m.close_pair_distance = 0.0;
+  }
   return m;
 }
 

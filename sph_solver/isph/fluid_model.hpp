@@ -24,6 +24,9 @@ struct FluidModel {
   double preconditioner_radius = 0.0;
   bool shifting = true;
   double shifting_coefficient = 2.0;  ///< A in D = A h |v|max dt (Lind et al. 2012)
+  /// Pairs closer than this many L0 after the shift are parted (close_pairs.hpp);
+  /// 0: never. Only with shifting on.
+  double close_pair_distance = 0.5;
 
   /// The regularisation eta^2 = 0.01 h^2 of the Laplacian and viscous terms.
   [[nodiscard]] double eta_squared() const { return 0.01 * smoothing_length * smoothing_length; }

@@ -10,6 +10,7 @@
 #include <optional>
 #include <utility>
 
+#include "sph_solver/isph/close_pairs.hpp"
 #include "sph_solver/isph/free_surface.hpp"
 #include "sph_solver/isph/particle_terms.hpp"
 #include "sph_solver/isph/wall_crossings.hpp"
@@ -511,6 +512,19 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
         if (model_.dimension == 2) dr.z() = 0.0;
         const double length = dr.norm();
         shift[at(i)] = length > cap ? dr * (cap / length) : dr;
+      }
+      if (model_.close_pair_distance > 0.0) {
+        // 4b. Pairs that the shift leaves closer than the distance, at the step's
+        // end positions (close_pairs.hpp).
+        std::vector<Eigen::Vector3d> shifted(at(owned));
+        for (int i = 0; i < owned; ++i) shifted[at(i)] = particles_.position[at(i)] + shift[at(i)];
+        const auto parting = close_pair_parting(n.neighbours, with_ghosts(halo_, std::move(shifted)),
+                                                with_ghosts(halo_, particles_.id),
+                                                owned, model_.close_pair_distance * model_.spacing);
+        for (int i = 0; i < owned; ++i) {
+          shift[at(i)] += parting[at(i)];
+          if (model_.dimension == 2) shift[at(i)].z() = 0.0;
+        }
       }
       const auto v_all = with_ghosts(halo_, v_new);
       const auto change = velocity_change_over_shift(n, mass, density, v_all, shift);

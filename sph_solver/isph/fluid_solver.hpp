@@ -28,6 +28,9 @@
 //      div r below 1.5 / 2.4); the velocity follows the shift to first
 //      order. grad C is taken at x~ with the step's neighbour list (one neighbour
 //      search less than at x^{n+1}; the shift is a regularisation, not physics).
+//   4b. pairs closer than close_pair_distance L0 at x^{n+1} + dr are parted
+//      (close_pairs.hpp: a collapse where the shift is skipped); the velocity
+//      follows this move too.
 // Wall forces (force of the fluid on each wall vertex) of the step: the viscous
 // part at x^n plus the pressure part at x~.
 #include <mpi.h>
