@@ -68,8 +68,6 @@ FluidModel read_model(const CaseConfig& config) {
   if (m.shifting) {
     m.shifting_coefficient = config.real("fluid.shifting.coefficient");
     m.close_pair_distance = config.real("fluid.shifting.close_pair_distance");
-  } else {
-    m.close_pair_distance = 0.0;
   }
   return m;
 }

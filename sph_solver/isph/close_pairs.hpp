@@ -6,8 +6,8 @@
 // pairs close across the sheet's thickness; once the pressure in the sheet turns
 // negative the symmetric gradient (METHOD.md eq 4) draws them together until a
 // step throws one out (the 2D dam break at L0 = 0.005 m: cases/dam_break_2d). So,
-// as the collision models of MPS keep particles apart (Koshizuka & Oka 1996;
-// Lee et al. 2011), each particle of a pair closer than a distance d moves away
+// much as the collision models of MPS codes keep particles apart, each particle
+// of a pair closer than a distance d moves away
 // from the other by half the shortfall: an isolated pair ends d apart, its centre
 // of mass in place. Pairs at d or beyond are untouched, which in a liquid of
 // lattice spacing L0 and d <= L0/2 is every pair but the collapsed ones.

@@ -521,10 +521,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
         const auto parting = close_pair_parting(n.neighbours, with_ghosts(halo_, std::move(shifted)),
                                                 with_ghosts(halo_, particles_.id),
                                                 owned, model_.close_pair_distance * model_.spacing);
-        for (int i = 0; i < owned; ++i) {
-          shift[at(i)] += parting[at(i)];
-          if (model_.dimension == 2) shift[at(i)].z() = 0.0;
-        }
+        for (int i = 0; i < owned; ++i) shift[at(i)] += parting[at(i)];  // in 2D in the plane, as the positions are
       }
       const auto v_all = with_ghosts(halo_, v_new);
       const auto change = velocity_change_over_shift(n, mass, density, v_all, shift);

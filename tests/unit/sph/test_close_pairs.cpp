@@ -26,24 +26,11 @@ namespace {
 constexpr double L0 = 0.02;
 constexpr double distance = 0.5 * L0;
 
-/// Every point's neighbours within 3 L0 (brute force: the tests' few points).
-NeighbourList all_within(const std::vector<Eigen::Vector3d>& points) {
-  NeighbourList list;
-  list.offsets.push_back(0);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      const double r = (points[i] - points[j]).norm();
-      if (i == j || r >= 3.0 * L0) continue;
-      list.indices.push_back(static_cast<int>(j));
-      list.distances.push_back(r);
-    }
-    list.offsets.push_back(static_cast<int>(list.indices.size()));
-  }
-  return list;
-}
-
+/// The parting of 2D `points` over their neighbours within 3 L0 (the solver's search).
 std::vector<Eigen::Vector3d> parted(const std::vector<Eigen::Vector3d>& points, const std::vector<std::int64_t>& id) {
-  return close_pair_parting(all_within(points), points, id, static_cast<int>(points.size()), distance);
+  CellList cells(2);
+  cells.build(points, 3.0 * L0);
+  return close_pair_parting(cells.neighbour_list(), points, id, static_cast<int>(points.size()), distance);
 }
 
 }  // namespace
@@ -103,6 +90,8 @@ std::vector<Eigen::Vector3d> after_one_step(double pair_distance, std::int64_t& 
   model.close_pair_distance = pair_distance;
   const TriangleMesh walls = make_rectangular_tank_2d(0.6, 0.6, 0.2, 0.04);
   Particles particles = tankfsi::test::fill_water(model, walls, 0.2);
+  // The filling numbers its particles 0 .. N-1: ids index the gathered positions.
+  for (std::size_t i = 0; i < particles.size(); ++i) REQUIRE(particles.id[i] == static_cast<std::int64_t>(i));
   // The top row's particle nearest x = 0.3 and its right-hand neighbour, which is
   // moved to 0.1 L0 from it.
   double top = -1.0;
