@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs every system package tankfsi needs (Debian 12 / bookworm).
 # Idempotent and non-interactive: when everything is present it only checks and exits.
+# Usage: scripts/setup.sh [bench]
+#   bench: also the reference code the benchmarks compare with (PySPH, a weakly-compressible
+#          SPH code: scripts/bench.sh wcsph); not needed to build, run or test tankfsi.
 set -euo pipefail
 
 packages=(
@@ -16,6 +19,11 @@ packages=(
   clang libclang-rt-14-dev       # the fuzz preset: clang and its libFuzzer / sanitizer runtimes
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
 )
+case "${1:-}" in
+  "") ;;
+  bench) packages+=(python3-pysph) ;;
+  *) echo "setup.sh: unknown option '$1' (none, or bench)" >&2; exit 2 ;;
+esac
 
 if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then
   echo "setup.sh: this system has no apt/dpkg. tankfsi's set-up script supports Debian 12" >&2

@@ -12,7 +12,9 @@ Figures go to OUTPUT/fluid_figures.json and a table to OUTPUT/fluid_figures.md.
 Nothing is asserted: a benchmark reports, the reader judges.
 
 Full set (a workstation or a cluster node; tens of minutes to hours):
-  2D dam break at L0 = 0.01 m and 0.005 m for 2 s; 3D cylindrical tank at rest at
+  2D dam break at L0 = 0.01 m and 0.005 m for 2 s, and at 0.01 m for 0.6 s (the
+  surge to the far wall, beside the weakly-compressible reference of
+  scripts/bench.sh wcsph when OUTPUT holds its figures); 3D cylindrical tank at rest at
   L0 chosen for >= 100k particles; each on 1 and 2 ranks.
 --quick (what a 2-core machine does in minutes): 2D dam break at L0 = 0.02 m for
   0.3 s on 1 and 2 ranks.
@@ -33,6 +35,9 @@ from measured_run import measured_run
 
 FULL = [
     ("dam_break_2d", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.01", "end_time=2.0"]),
+    # The collapse and surge to the far wall: what the weakly-compressible reference
+    # (scripts/bench/wcsph_reference.py) runs to compare with.
+    ("dam_break_2d_front", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.01", "end_time=0.6"]),
     ("dam_break_2d_fine", "cases/dam_break_2d/case.yaml", ["fluid.spacing=0.005", "end_time=2.0"]),
     # 0.39 m^3 of liquid: L0 = 0.015 m gives about 116,000 particles (0.04 m gave 6,000).
     ("cylinder_3d_rest", "cases/hydrostatic_3d/case.yaml", ["fluid.spacing=0.015", "end_time=0.5"]),
@@ -72,6 +77,35 @@ def commit():
     return head + ("+changes" if git("status", "--porcelain", "--untracked-files=no").strip() else "")
 
 
+def setting(settings, key):
+    """The value of `key` among a case's --set overrides ("key=value"), as a number."""
+    return next(float(item.split("=", 1)[1]) for item in settings if item.startswith(key + "="))
+
+
+def against_reference(out, figures):
+    """Lines setting the dam-break rows beside the weakly-compressible code's run of
+    the same spacing and simulated time (OUTPUT/wcsph_reference.json, written by
+    scripts/bench.sh wcsph), when there is one."""
+    path = out / "wcsph_reference.json"
+    if not path.exists():
+        return []
+    reference = json.loads(path.read_text())
+    lines = []
+    for name, _, settings in FULL + QUICK:
+        if not name.startswith("dam_break") or name not in figures:
+            continue
+        if (setting(settings, "fluid.spacing"), setting(settings, "end_time")) != \
+                (reference["spacing_m"], reference["simulated_s"]):
+            continue
+        for r in figures[name]:
+            lines.append(f"- {name} on {r['ranks']} rank{'s' if r['ranks'] > 1 else ''}: {r['wall_s']:.0f} s, {r['steps']:,} steps; "
+                         f"{reference['code']} on {reference['threads']} threads ({reference['date']}): "
+                         f"{reference['wall_s']:.0f} s, {reference['steps']:,} steps — "
+                         f"{reference['wall_s'] / r['wall_s']:.2f} times ours")
+    return ["", "Against a weakly-compressible SPH code, the same column, spacing and simulated time:"] + lines \
+        if lines else []
+
+
 def write(out, figures):
     """Writes OUTPUT/fluid_figures.json and the Markdown table of the same rows."""
     (out / "fluid_figures.json").write_text(json.dumps(figures, indent=2))
@@ -87,6 +121,7 @@ def write(out, figures):
                                       ("neighbours", "ppe_assemble", "ppe_solve", "predictor", "corrector"))
                          + f" | {r['peak_memory_per_particle_kib']:.2f} | "
                          f"{r.get('date', 'date not recorded')} {r.get('commit', '')} |")
+    lines += against_reference(out, figures)
     (out / "fluid_figures.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
