@@ -66,8 +66,9 @@ def make_application(spacing, end_time):
         def create_scheme(self):
             # The example's WCSPH scheme with delta-SPH's density diffusion (Marrone et
             # al. 2011) and a fixed smoothing length: as the example has it (no
-            # diffusion, h following the density) particles of the surge front turn
-            # NaN from t ~ 0.4 s at L0 = 0.01 m and the time step falls to 2e-5 s.
+            # diffusion, h following the density), at L0 = 0.01 m 37 particles were
+            # NaN by t = 0.45 s and the time step fell to 2e-5 s. (h0 here is the
+            # example's; configure_scheme() sets the spacing's.)
             wcsph = WCSPHScheme(["fluid"], ["boundary"], dim=2, rho0=example.ro, c0=example.co, h0=example.h,
                                 hdx=example.hdx, gy=-example.g, alpha=example.alpha, beta=example.beta,
                                 gamma=example.gamma, hg_correction=True, update_h=False, delta_sph=True)
@@ -103,9 +104,9 @@ def front(folder, time, spacing):
             best = (t, data["arrays"]["fluid"])
     t, fluid = best
     lost = int((~np.isfinite(fluid.x) | ~np.isfinite(fluid.y)).sum())
-    # The walls' surfaces lie half a spacing beyond their first particle layer
-    # (floor particles at y = 0, the back wall's at x = 0), as tankfsi's walls
-    # lie half a spacing beyond its first fluid layer.
+    # The walls' surfaces lie half a spacing from their outermost particles (the
+    # floor's at y = 0, the back wall's at x = 0; the fluid's first layer at
+    # y, x = L0), as tankfsi's lie half a spacing from its first fluid layer.
     floor, back = 0.5 * spacing, 0.5 * spacing
     near_floor = fluid.y - floor < 2.0 * spacing
     return t, (float(fluid.x[near_floor].max()) - back) / COLUMN_WIDTH, lost
