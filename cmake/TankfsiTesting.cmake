@@ -11,12 +11,14 @@
 # odls_base_sigkill_timeout=0: mpirun otherwise waits 2 s before tearing down a
 # job whose process exited non-zero, which the bad-input tests do by design.
 # (Not set for real runs: a job killed by the scheduler needs that grace time.)
+# HWLOC_COMPONENTS=-opencl: as scripts/common.sh says, so that mpirun forwards SIGUSR1.
 set(TANKFSI_TEST_ENVIRONMENT
   OMPI_ALLOW_RUN_AS_ROOT=1
   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   OMPI_MCA_rmaps_base_oversubscribe=1
   OMPI_MCA_btl_vader_single_copy_mechanism=none
   OMPI_MCA_odls_base_sigkill_timeout=0
+  HWLOC_COMPONENTS=-opencl
   TANKFSI_PYTHON=${TANKFSI_PYTHON})
 
 # Sanitizer builds: address and undefined-behaviour errors stop the test
