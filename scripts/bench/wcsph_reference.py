@@ -45,15 +45,19 @@ import time
 
 import numpy as np
 
-# Martin & Moyce (1952), n^2 = 2, a = 2.25 in (VALIDATION.md): T = t sqrt(2 g / a), Z = z / a.
-MARTIN_MOYCE = [(0.832, 1.217), (1.219, 1.474), (1.997, 2.292), (2.547, 2.995)]
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "post"))
+from compare_dam_break import MARTIN_MOYCE  # noqa: E402  (T, Z) = (t sqrt(2 g / a), z / a)
+
 COLUMN_WIDTH = 1.0
+TANK_LENGTH = 4.0  # in column widths: the front meets the far wall at Z = 4
 GRAVITY = 9.81
+# The experiment's points before the front meets the far wall (later ones are not comparable).
+COMPARABLE = [(T, Z) for T, Z in MARTIN_MOYCE if Z < TANK_LENGTH]
 
 
 def front_times():
     scale = math.sqrt(2.0 * GRAVITY / COLUMN_WIDTH)
-    return [T / scale for T, _ in MARTIN_MOYCE]
+    return [T / scale for T, _ in COMPARABLE]
 
 
 def make_application(spacing, end_time):
@@ -92,17 +96,17 @@ def make_application(spacing, end_time):
     return ReferenceDamBreak(fname="dam_break_2d")
 
 
-def front(folder, time, spacing):
+def outputs(folder):
+    """The run's outputs: (time, fluid particle array) for each file written."""
+    from pysph.solver.utils import get_files, load
+    return [(data["solver_data"]["t"], data["arrays"]["fluid"])
+            for data in map(load, get_files(str(folder), "dam_break_2d"))]
+
+
+def front(written, time, spacing):
     """Farthest fluid particle within 2 L0 of the floor at the output nearest `time`, as Z,
     and how many particles are no longer finite there."""
-    from pysph.solver.utils import get_files, load
-    best = None
-    for name in get_files(str(folder), "dam_break_2d"):
-        data = load(name)
-        t = data["solver_data"]["t"]
-        if best is None or abs(t - time) < abs(best[0] - time):
-            best = (t, data["arrays"]["fluid"])
-    t, fluid = best
+    t, fluid = min(written, key=lambda output: abs(output[0] - time))
     lost = int((~np.isfinite(fluid.x) | ~np.isfinite(fluid.y)).sum())
     # The walls' surfaces lie half a spacing from their outermost particles (the
     # floor's at y = 0, the back wall's at x = 0; the fluid's first layer at
@@ -143,11 +147,12 @@ def main():
         reached = app.solver.t
         fluid = next(array for array in app.particles if array.name == "fluid")
         lost_at_end = int((~np.isfinite(fluid.x) | ~np.isfinite(fluid.y)).sum())
+        written = outputs(scratch)
         fronts = []
-        for (T, Z), t in zip(MARTIN_MOYCE, front_times()):
+        for (T, Z), t in zip(COMPARABLE, front_times()):
             if t > reached:
                 continue
-            t_out, z, lost = front(scratch, t, args.spacing)
+            t_out, z, lost = front(written, t, args.spacing)
             fronts.append({"T": T, "t_s": t_out, "Z": z, "martin_moyce_Z": Z, "error": z / Z - 1.0,
                            "non_finite_particles": lost})
     total = sum(particles.values())
