@@ -21,7 +21,8 @@ struct FluidModel {
   double free_surface_threshold = 0.97;
   /// > 0: BoomerAMG's hierarchy is built on the PPE operator's pairs within
   /// this many L0 (rescaled; pressure_poisson.hpp); 0: on the operator itself.
-  double preconditioner_radius = 0.0;
+  /// The case file's default (fluid.ppe.preconditioner_radius).
+  double preconditioner_radius = 1.8;
   bool shifting = true;
   double shifting_coefficient = 2.0;  ///< A in D = A h |v|max dt (Lind et al. 2012)
   /// Pairs closer than this many L0 after the shift are parted (close_pairs.hpp);

@@ -21,7 +21,7 @@
 // columns are left out of the other rows (value 0 moved to the right-hand side),
 // which keeps the matrix symmetric.
 //
-// With FluidModel::preconditioner_radius > 0 (not the default) BoomerAMG is
+// With FluidModel::preconditioner_radius > 0 (the default, 1.8) BoomerAMG is
 // built on a sparser twin of the operator: the pairs closer than that radius
 // (1.8 L0: the lattice's first two shells, 9 entries a row in 2D and 27 in 3D
 // instead of 37 and 93 at h = 1.2 L0), their weights scaled by the ratio of

@@ -281,7 +281,13 @@ TEST_CASE("BoomerAMG's twin of the PPE operator: two shells a row, the operator'
     CHECK(worst < 0.05);
     CHECK(std::abs(kept / all - 1.0) > 0.2);
   }
-  SECTION("radius 0 (the default), or a preconditioner other than BoomerAMG: the operator itself") {
+  SECTION("the default model builds the twin") {
+    PressurePoisson with_default(MPI_COMM_SELF, "");
+    with_default.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
+    CHECK(with_default.preconditioning_matrix() != with_default.operator_matrix());
+  }
+  SECTION("radius 0, or a preconditioner other than BoomerAMG: the operator itself") {
+    tank.model.preconditioner_radius = 0.0;
     PressurePoisson without(MPI_COMM_SELF, "");
     without.assemble(tank.view(), tank.particles.mass, tank.density, index, no_dirichlet);
     CHECK(without.preconditioning_matrix() == without.operator_matrix());
