@@ -51,8 +51,8 @@ std::vector<KeySpec> fluid_keys() {
                "two shells), their weights scaled so that the twin's Laplacian of a quadratic field is the "
                "operator's. 0: on the operator itself. The solution is the operator's either way (to the "
                "operator's own residual); the twin's hierarchy costs less (alternating pairs: the 2D dam "
-               "break's solve 15-19 % less, the 3D cylinder's at 115,000 particles 30-45 % less), and a "
-               "step where it fails is solved again with the operator's (README.md).")
+               "break's solve 1-20 % less in three pairs, the 3D cylinder's at 115,000 particles 30-45 % less), "
+               "and a step where it fails is solved again with the operator's (README.md).")
           .default_is("1.8").at_least(0).at_most(10),
       text_key("fluid.ppe.solver_options",
                "PETSc options for the pressure solver (prefix -ppe_; without them CG with hypre BoomerAMG, "
