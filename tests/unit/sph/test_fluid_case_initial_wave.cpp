@@ -1,7 +1,8 @@
 // fluid.initial_velocity read from a case file (sph_solver/app/fluid_case.cpp):
 // a standing wave gives every particle the mode's velocity for the tank's filled
 // depth (the top of the highest layer, 0.70 m for a level of 0.70 m at L0 = 0.02),
-// and the cases it does not describe are refused with the key and a reason.
+// and the cases it does not describe are refused with the key and a reason; a case
+// without the optional solver keys gets FluidModel's defaults.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -62,4 +63,18 @@ TEST_CASE("a standing wave is refused where it does not apply", "[fluid_case]") 
   CHECK_THROWS_WITH(read(sloshing_case, {{"fluid.geometry.type", "overflow_tank", ""}}),
                     Catch::Contains("fluid.initial_velocity.type: a standing wave needs fluid.geometry.type "
                                     "rectangular_tank"));
+}
+
+// The fluid model's own defaults (FluidModel, which the unit tests construct) are
+// the case file's (case_schema_fluid.cpp): a case that leaves the keys out gets
+// the model the tests check.
+TEST_CASE("a case without the solver's optional keys gets FluidModel's defaults", "[fluid_case]") {
+  const FluidModel defaults;
+  const FluidModel read_model = read(testing::with_line(sloshing_case, 10, "")).model;
+  CHECK(read_model.preconditioner_radius == defaults.preconditioner_radius);
+  CHECK(read_model.density_error_weight == defaults.density_error_weight);
+  CHECK(read_model.free_surface_threshold == defaults.free_surface_threshold);
+  CHECK(read_model.shifting == defaults.shifting);
+  CHECK(read_model.shifting_coefficient == defaults.shifting_coefficient);
+  CHECK(read_model.close_pair_distance == defaults.close_pair_distance);
 }
