@@ -12,12 +12,18 @@
 # job whose process exited non-zero, which the bad-input tests do by design.
 # (Not set for real runs: a job killed by the scheduler needs that grace time.)
 # HWLOC_COMPONENTS=-opencl: as scripts/common.sh says, so that mpirun forwards SIGUSR1.
+# hwloc_base_binding_policy=none: mpirun binds a job of one or two ranks to the
+# first cores, and ctest runs two such jobs at once (-j2): both were bound to
+# core 0 and shared it while core 1 idled (two 1-rank unit tests: 54 s
+# together, 37 s unbound; the sanitizer build's sph_unit_tests.np1 took 94 s in
+# the suite and 35 s alone).
 set(TANKFSI_TEST_ENVIRONMENT
   OMPI_ALLOW_RUN_AS_ROOT=1
   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   OMPI_MCA_rmaps_base_oversubscribe=1
   OMPI_MCA_btl_vader_single_copy_mechanism=none
   OMPI_MCA_odls_base_sigkill_timeout=0
+  OMPI_MCA_hwloc_base_binding_policy=none
   HWLOC_COMPONENTS=-opencl
   TANKFSI_PYTHON=${TANKFSI_PYTHON})
 

@@ -156,10 +156,13 @@ def write_mesh(path, times, nodes, cells, node_fields, cell_fields):
                 group[f"cell_fields/{name}"] = values
 
 
-def build_run(folder, structure=True, ground_in_run=True, one_folder=False, roof_clearance=None):
-    """A fake run folder; returns what the report must find in it."""
+def build_run(folder, structure=True, ground_in_run=True, one_folder=False, roof_clearance=None, seconds=20.0):
+    """A fake run folder of records `seconds` long; returns what the report must
+    find in it. The period checks need the 20 s (3.4 sloshing periods); the
+    checks of what a report says or leaves out take short records, which the
+    period fits (most of a report's time) get through quickly."""
     rng = np.random.default_rng(7)
-    time_s = np.round(np.arange(0, 20.0 + 1e-9, 0.01), 10)
+    time_s = np.round(np.arange(0, seconds + 1e-9, 0.01), 10)
     ax, ay, az = (scale * rng.standard_normal(len(time_s)) for scale in (0.8, 0.4, 0.3))
     slosh_x, slosh_y = newmark(time_s, ax, SLOSHING_S, 0.005), newmark(time_s, ay, SLOSHING_S, 0.005)
     bulge_x = newmark(time_s, ax, BULGING_S, 0.03)
@@ -194,7 +197,7 @@ def build_run(folder, structure=True, ground_in_run=True, one_folder=False, roof
     if ground_in_run:
         write_csv(fluid / "probes" / "ground_acceleration.csv",
                   {"time_s": time_s, "ax_m_s2": ax, "ay_m_s2": ay, "az_m_s2": az})
-    fluid_summary = {"fluid": {"end_time_s": 20.0, "particles": 1000, "steps": 2000, "particle_steps_per_second": 3.5e4,
+    fluid_summary = {"fluid": {"end_time_s": seconds, "particles": 1000, "steps": 2000, "particle_steps_per_second": 3.5e4,
                                "ppe_iterations": {"max": 77, "mean": 69.8}, "wall_seconds": 600.0,
                                "wall_seconds_per_simulated_second": 30.0,
                                "time_step_s": {"max": 0.01, "mean": 0.01, "min": 0.0099},
@@ -207,7 +210,7 @@ def build_run(folder, structure=True, ground_in_run=True, one_folder=False, roof
     (fluid / "summary.json").write_text(json.dumps(fluid_summary, indent=2))
     (fluid / "provenance.json").write_text(json.dumps(
         {"git_commit": "0" * 40, "programs": {"sph_solver": {"case_file": "/cases/fake/case.yaml", "mpi_ranks": 1}}}))
-    field_times = [0.0, 10.0, 20.0]
+    field_times = [0.0, seconds / 2, seconds]
     write_particles(fluid / "fluid.h5", field_times)
     nodes, cells = tank_mesh()
     write_mesh(fluid / "walls.h5", field_times, nodes, [c if c[0] == 4 else [4, c[1], c[2], c[3]] for c in cells],
@@ -254,7 +257,7 @@ def build_run(folder, structure=True, ground_in_run=True, one_folder=False, roof
             "coupling": {"iterations_per_window": 1.0, "most_iterations": 1, "unconverged_windows": 0, "windows": 2000},
             "modal": {"periods_s": [0.08, 0.09]},
             "programs": {"fem_solver": {"status": "finished", "wall_time_s": 612.5}},
-            "structure": {"analysis": "dynamic", "end_time_s": 20.0, "equations": 1000, "nodes": len(nodes),
+            "structure": {"analysis": "dynamic", "end_time_s": seconds, "equations": 1000, "nodes": len(nodes),
                           "quadrilaterals": 144, "triangles": 48, "time_step_s": 0.001, "steps": 20000,
                           "seconds_per_step": 0.03, "peak_displacement_m": 2e-4, "peak_base_shear_N": [2e6, 5e5]}},
             indent=2))
@@ -341,13 +344,15 @@ with tempfile.TemporaryDirectory() as scratch:
     check("the programs' own summaries are untouched",
           all((coupled / side / "summary.json").read_bytes() == own[side] for side in own))
 
-    # 2. The same run as if it had failed: no summaries, an error in the log.
+    # 2. A coupled run that failed: no summaries, an error in the log.
+    failed = scratch / "failed"
+    build_run(failed, seconds=3.0)
     for side in ("fluid", "structure"):
-        (coupled / side / "summary.json").unlink()
-    (coupled / "fluid" / "run.log").write_text(
+        (failed / side / "summary.json").unlink()
+    (failed / "fluid" / "run.log").write_text(
         "2026-12-02T04:58:05Z [sph_solver] error: step 9 at t = 0.06 s: 1 particle(s) crossed a wall\n")
-    result = run_cli(coupled)
-    report = (coupled / "report.md").read_text()
+    result = run_cli(failed)
+    report = (failed / "report.md").read_text()
     check("failed run: reported, with the log's error and the missing summaries", result.returncode == 0
           and "**The run failed.**" in report and "crossed a wall" in report and "no fluid summary.json" in report)
 
@@ -377,7 +382,7 @@ with tempfile.TemporaryDirectory() as scratch:
     (case_folder / "README.md").write_text("# fake\n\n## Periods against theory\n\nThe roof stiffens the wall.\n"
                                            "\n## Ground motion\n\nnot this\n")
     explained = scratch / "explained"
-    build_run(explained, structure=False)
+    build_run(explained, structure=False, seconds=3.0)
     provenance = json.loads((explained / "fluid" / "provenance.json").read_text())
     provenance["programs"]["sph_solver"]["case_file"] = str(case_folder / "case.yaml")
     (explained / "fluid" / "provenance.json").write_text(json.dumps(provenance))
@@ -388,7 +393,7 @@ with tempfile.TemporaryDirectory() as scratch:
 
     # 5. The fluid program's own roof clearance is used when it writes one.
     own_clearance = scratch / "own_clearance"
-    build_run(own_clearance, structure=False, roof_clearance=2.5)
+    build_run(own_clearance, structure=False, roof_clearance=2.5, seconds=3.0)
     summary, _ = tank_report.build_report(own_clearance)
     check("roof_clearance_m of the fluid summary is used", summary["min_roof_clearance_m"] == 2.5
           and "fluid summary" in summary["roof_clearance"]["source"])
