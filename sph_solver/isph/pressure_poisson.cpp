@@ -94,55 +94,57 @@ PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const do
   return solve_assembled(source, pressure);
 }
 
-void PressurePoisson::Rows::clear(int owned) {
+void PressurePoisson::Rows::Block::clear() {
   begin.assign(1, 0);
   columns.clear();
   values.clear();
-  diagonal_nonzeros.assign(at(owned), 0);
-  off_diagonal_nonzeros.assign(at(owned), 0);
+  // A block without entries still hands PETSc arrays, not null pointers.
+  columns.reserve(1);
+  values.reserve(1);
 }
 
-void PressurePoisson::Rows::add(PetscInt row, PetscScalar diagonal, const std::vector<RowEntry>& entries,
+void PressurePoisson::Rows::clear() {
+  diagonal.clear();
+  off_diagonal.clear();
+}
+
+void PressurePoisson::Rows::add(PetscInt row, PetscScalar diagonal_value, const std::vector<RowEntry>& entries,
                                 PetscInt owned_begin, PetscInt owned_end, double max_distance) {
-  const std::size_t i = begin.size() - 1;
-  // The diagonal in its place among the columns (PETSc takes each row whole
-  // and in column order: MAT_SORTED_FULL).
+  // The diagonal in its place among the diagonal block's columns (each block's
+  // rows in column order, as PETSc keeps them).
   bool diagonal_placed = false;
   const auto place_diagonal = [&] {
-    columns.push_back(row);
-    values.push_back(diagonal);
-    ++diagonal_nonzeros[i];
+    diagonal.columns.push_back(row - owned_begin);
+    diagonal.values.push_back(diagonal_value);
     diagonal_placed = true;
   };
   for (const RowEntry& e : entries) {
     if (e.distance > max_distance) continue;
-    if (!diagonal_placed && e.column > row) place_diagonal();
-    columns.push_back(e.column);
-    values.push_back(e.value);
-    ++(e.column >= owned_begin && e.column < owned_end ? diagonal_nonzeros : off_diagonal_nonzeros)[i];
+    if (e.column >= owned_begin && e.column < owned_end) {
+      if (!diagonal_placed && e.column > row) place_diagonal();
+      diagonal.columns.push_back(e.column - owned_begin);
+      diagonal.values.push_back(e.value);
+    } else {
+      off_diagonal.columns.push_back(e.column);
+      off_diagonal.values.push_back(e.value);
+    }
   }
   if (!diagonal_placed) place_diagonal();
-  begin.push_back(static_cast<PetscInt>(values.size()));
+  diagonal.end_row();
+  off_diagonal.end_row();
 }
 
-Mat PressurePoisson::create_matrix(const Rows& rows, PetscInt first_row) const {
-  const auto owned = static_cast<PetscInt>(rows.begin.size() - 1);
+Mat PressurePoisson::create_matrix(Rows& rows) const {
+  const auto owned = static_cast<PetscInt>(rows.diagonal.begin.size() - 1);
   Mat matrix = nullptr;
-  check(MatCreateAIJ(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE, 0, rows.diagonal_nonzeros.data(), 0,
-                     rows.off_diagonal_nonzeros.data(), &matrix),
-        "MatCreateAIJ");
+  // PETSc takes the blocks as they are (no copy): the off-diagonal block's
+  // columns are renumbered in place when the matrix is assembled.
+  check(MatCreateMPIAIJWithSplitArrays(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE,
+                                       rows.diagonal.begin.data(), rows.diagonal.columns.data(),
+                                       rows.diagonal.values.data(), rows.off_diagonal.begin.data(),
+                                       rows.off_diagonal.columns.data(), rows.off_diagonal.values.data(), &matrix),
+        "MatCreateMPIAIJWithSplitArrays");
   check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-  // Every row whole, in column order, its preallocation exact (Rows::add()).
-  check(MatSetOption(matrix, MAT_SORTED_FULL, PETSC_TRUE), "MatSetOption");
-  for (PetscInt i = 0; i < owned; ++i) {
-    const PetscInt global_row = first_row + i;
-    const PetscInt begin = rows.begin[at(i)];
-    check(MatSetValues(matrix, 1, &global_row, rows.begin[at(i) + 1] - begin, rows.columns.data() + begin,
-                       rows.values.data() + begin, INSERT_VALUES),
-          "MatSetValues");
-  }
-  check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   return matrix;
 }
 
@@ -153,9 +155,14 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   const PetscInt end_row = first_row + owned;
   const double twin_radius = multigrid_ ? n.model.preconditioner_radius * n.model.spacing : 0.0;
   const bool with_twin = twin_radius > 0.0;
-  operator_rows_.clear(owned);
+  // The last step's matrices live on the rows' arrays (create_matrix()): they,
+  // and the solver that holds them, go before the arrays are refilled.
+  if (ksp_ != nullptr) KSPDestroy(&ksp_);
+  if (matrix_ != nullptr) MatDestroy(&matrix_);
+  if (twin_ != nullptr) MatDestroy(&twin_);
+  operator_rows_.clear();
   if (with_twin) {
-    twin_rows_.clear(owned);
+    twin_rows_.clear();
     twin_air_.assign(at(owned), 0.0);
   }
   // sum a_ij r_ij^2 over the twin's pairs and over all (the second moments).
@@ -205,21 +212,20 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   }
 
   dirichlet_.assign(dirichlet.begin(), dirichlet.begin() + owned);
-  if (matrix_ != nullptr) MatDestroy(&matrix_);
-  if (twin_ != nullptr) MatDestroy(&twin_);
-  matrix_ = create_matrix(operator_rows_, first_row);
+  matrix_ = create_matrix(operator_rows_);
   if (with_twin) {
     MPI_Allreduce(MPI_IN_PLACE, moments, 2, MPI_DOUBLE, MPI_SUM, comm_);
     // No pair within the radius anywhere (particles all apart): the operator is
     // the preconditioner's matrix.
     if (moments[0] < 0.0) {
       const double scale = moments[1] / moments[0];
+      for (PetscScalar& value : twin_rows_.off_diagonal.values) value *= scale;
+      Rows::Block& block = twin_rows_.diagonal;
       for (int i = 0; i < owned; ++i) {
         if (dirichlet_[at(i)] != 0) continue;
-        const auto row = static_cast<PetscInt>(global_index[at(i)]);
-        for (PetscInt k = twin_rows_.begin[at(i)]; k < twin_rows_.begin[at(i) + 1]; ++k) {
-          PetscScalar& value = twin_rows_.values[at(static_cast<int>(k))];
-          if (twin_rows_.columns[at(static_cast<int>(k))] != row) {
+        for (PetscInt k = block.begin[at(i)]; k < block.begin[at(i) + 1]; ++k) {
+          PetscScalar& value = block.values[static_cast<std::size_t>(k)];
+          if (block.columns[static_cast<std::size_t>(k)] != i) {
             value *= scale;
           } else {
             value = scale * value - twin_air_[at(i)];
@@ -227,7 +233,7 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
           }
         }
       }
-      twin_ = create_matrix(twin_rows_, first_row);
+      twin_ = create_matrix(twin_rows_);
     }
   }
 

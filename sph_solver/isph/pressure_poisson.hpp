@@ -101,15 +101,23 @@ class PressurePoisson {
   [[nodiscard]] Mat preconditioning_matrix() const { return twin_ != nullptr ? twin_ : matrix_; }
 
  private:
-  /// Owned rows in CSR form with global columns, each in column order, and the
-  /// per-row counts for preallocation; reused from step to step.
+  /// Owned rows in the two CSR blocks of a PETSc MPIAIJ matrix, each row in
+  /// column order: the diagonal block (columns of owned rows, numbered from the
+  /// first owned row) and the off-diagonal block (global columns). The matrix
+  /// is made on these arrays without a copy or an insertion per entry
+  /// (MatCreateMPIAIJWithSplitArrays), so they live until it is destroyed;
+  /// reused from step to step.
   struct Rows {
-    std::vector<PetscInt> begin;
-    std::vector<PetscInt> columns;
-    std::vector<PetscScalar> values;
-    std::vector<PetscInt> diagonal_nonzeros;
-    std::vector<PetscInt> off_diagonal_nonzeros;
-    void clear(int owned);
+    struct Block {
+      std::vector<PetscInt> begin;
+      std::vector<PetscInt> columns;
+      std::vector<PetscScalar> values;
+      void clear();
+      void end_row() { begin.push_back(static_cast<PetscInt>(values.size())); }
+    };
+    Block diagonal;
+    Block off_diagonal;
+    void clear();
     /// Appends the row `row` (global): `diagonal` and the entries (in column
     /// order) no farther than `max_distance`; the owned range [owned_begin,
     /// owned_end) of columns is the diagonal block.
@@ -118,8 +126,8 @@ class PressurePoisson {
   };
   /// A new KSP from the options (the case's, the command line's, the defaults).
   void create_solver();
-  /// A new distributed matrix holding `rows` (owned rows from `first_row`).
-  [[nodiscard]] Mat create_matrix(const Rows& rows, PetscInt first_row) const;
+  /// A new distributed matrix on the arrays of `rows` (which must outlive it).
+  [[nodiscard]] Mat create_matrix(Rows& rows) const;
   /// One KSP solve from `pressure`; the converged reason (collective) and the
   /// error code are in the result, the pressure updated only on success.
   struct Attempt {
