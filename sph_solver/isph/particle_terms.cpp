@@ -123,10 +123,6 @@ double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d
   return share;
 }
 
-double laplacian_weight(const FluidModel& model, double r, double slope, double volume) {
-  return 2.0 * volume * r * slope / (r * r + model.eta_squared());
-}
-
 std::vector<double> pressure_laplacian(const Neighbourhood& n, std::span<const double> mass,
                                        std::span<const double> density, std::span<const double> pressure) {
   require_kernel_values(n);

@@ -57,7 +57,10 @@ struct Neighbourhood {
 /// The weight a_ij = 2 V (x_ij · grad_i W_ij) / (r^2 + eta^2) of the Laplacian
 /// (eq 6, with the factor 2), x_ij · grad_i W_ij = r dW/dr (`slope` = dW/dr at r):
 /// sum_j a_ij (f_i - f_j) approximates lap f.
-[[nodiscard]] double laplacian_weight(const FluidModel& model, double r, double slope, double volume);
+/// Inline: the PPE's assembly takes it for every pair of every row.
+[[nodiscard]] inline double laplacian_weight(const FluidModel& model, double r, double slope, double volume) {
+  return 2.0 * volume * r * slope / (r * r + model.eta_squared());
+}
 
 /// (lap P)_i = sum_j a_ij (P_i - P_j) + the air's share (free_surface.hpp),
 /// V_ij = (m_i + m_j)/(rho_i + rho_j): the PPE's operator on the liquid (the walls'
