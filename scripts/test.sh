@@ -6,7 +6,8 @@
 #            sanitize (one integration test of each code path:
 #            tests/integration/CMakeLists.txt), the unit tests on 1 and 2 ranks only
 #            (their 3- and 4-rank variants run the same code oversubscribed on CI's
-#            2 cores, minutes each instrumented; release runs them); the Python
+#            2 cores, minutes each instrumented; release runs them), without the
+#            unit test cases tagged [heavy] (cmake/TankfsiTesting.cmake); the Python
 #            post-processing's tests are release's only (no compiled code in them)
 #   fuzz     clang libFuzzer targets of the file readers, 20 s each (label fuzz)
 # Usage: scripts/test.sh [all|release|debug|asan|fuzz] [ctest args...]

@@ -444,7 +444,7 @@ TEST_CASE("synthetic envelope rises quadratically, holds, then decays to 0.05", 
                   std::invalid_argument);
 }
 
-TEST_CASE("synthetic spectrum peaks within 10 % of the dominant frequency", "[ground_motion]") {
+TEST_CASE("synthetic spectrum peaks within 10 % of the dominant frequency", "[ground_motion][heavy]") {
   for (const double period : {2.0, 6.0}) {
     INFO("dominant period " << period << " s");
     const double peak = fitted_peak_over_dominant_frequency(period);

@@ -242,7 +242,7 @@ TEST_CASE("an end moment bends a cantilever strip into a circular arc", "[fem][c
   CHECK(std::abs(reaction_moment - moment) < 1e-6 * moment);
 }
 
-TEST_CASE("a tip force bends a cantilever strip as the elastica", "[fem][corotational]") {
+TEST_CASE("a tip force bends a cantilever strip as the elastica", "[fem][corotational][heavy]") {
   // Mattiasson (1981), PL^2/EI = 1, 2 and 10: w/L 0.30172, 0.49346, 0.81061 and
   // u/L 0.05643, 0.16064, 0.55500 (a shooting solution of theta'' = -k cos theta
   // gives the same five digits). The force keeps its direction (-y).
@@ -293,7 +293,7 @@ TEST_CASE("small co-rotational motion is the linear motion", "[fem][corotational
   CHECK(std::abs(linear.energy() / corotational.energy() - 1.0) < 1e-3);
 }
 
-TEST_CASE("a swinging cantilever keeps its energy through large rotations", "[fem][corotational]") {
+TEST_CASE("a swinging cantilever keeps its energy through large rotations", "[fem][corotational][heavy]") {
   // Released from a large static deflection (PL^2/EI = 2, the tip turned by
   // 45 degrees), undamped: the average-acceleration rule conserves energy for
   // linear systems; with large rotations it stays bounded, to the steps'

@@ -173,7 +173,7 @@ TEST_CASE("a wall velocity jump's impulse is the operator's and the step's force
   CHECK(split_error < 1e-6 * force_scale);
 }
 
-TEST_CASE("the added-mass operator of a cylindrical tank's wall matches potential flow", "[added_mass]") {
+TEST_CASE("the added-mass operator of a cylindrical tank's wall matches potential flow", "[added_mass][heavy]") {
   // cases/hydrostatic_3d's tank (R = 0.5 m, 32 facets, dome roof), oil 0.5 m deep,
   // L0 = 0.05 m (10 particles per radius), particles on rings. The wetted wall's
   // vertices (z <= H, the foot ring included) all move inwards at unit speed.

@@ -109,7 +109,7 @@ TEST_CASE("triangle index: nearest and within equal brute force on an icosphere"
   check_mesh(make_icosphere(1.0, 3), rng);
 }
 
-TEST_CASE("triangle index: nearest and within equal brute force on a cylinder", "[wall_geometry]") {
+TEST_CASE("triangle index: nearest and within equal brute force on a cylinder", "[wall_geometry][heavy]") {
   std::mt19937_64 rng(4);
   check_mesh(make_open_cylinder(1.0, 2.0, 40, 16, NormalSide::inward), rng);
 }
