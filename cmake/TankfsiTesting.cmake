@@ -60,17 +60,16 @@ function(tankfsi_add_mpi_test)
   endforeach()
 endfunction()
 
-# Test cases tagged [heavy] are numerical checks at sizes that take seconds
-# uninstrumented and about ten times that under the sanitizers, on code paths
-# that smaller cases take too (the elastica and the swinging cantilever beside
+# Test cases tagged [heavy] are numerical checks that take 0.12-1.9 s
+# uninstrumented and 3.6-12.5 s under the sanitizers (6 to 42 times as long), on
+# code paths that smaller cases take too (the elastica and the swinging cantilever beside
 # the circular arc and the small co-rotational motion; the synthetic
 # spectrum's fit beside its reproducibility and scaling; the cylindrical
 # tank's added mass beside the side wall's; the triangle index against brute
 # force on a cylinder beside the icosphere). The sanitizer build leaves them
 # to the release build, which runs them on every rank count. (Instrumented,
-# sph_unit_tests.np1 took 49 s with them and 28 s without; the unit tests
-# on 1 and 2 ranks summed 188 s in the suite with them, 91 s run by
-# themselves without.)
+# the unit tests on 1 and 2 ranks summed 188 s in the suite with them, and
+# 91 s run by themselves without.)
 function(tankfsi_add_catch_test)
   cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBRARIES;LABELS;RANKS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
