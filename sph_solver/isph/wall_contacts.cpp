@@ -94,10 +94,38 @@ WallCandidates find_wall_candidates(const WallModel& walls, std::span<const Eige
   result.skin = skin;
   result.wall_version = walls.mesh().geometry_version();
   result.offsets.reserve(positions.size() + 1);
-  for (const Eigen::Vector3d& x : positions) {
-    walls.index().within(x, walls.table().cutoff() + skin,
-                         [&result](const WallHit& hit) { result.triangles.push_back(hit.triangle); });
-    result.offsets.push_back(static_cast<int>(result.triangles.size()));
+  const TriangleMesh& mesh = walls.mesh();
+  const TriangleIndex& index = walls.index();
+  const double radius = walls.table().cutoff() + skin;
+  const double radius_squared = radius * radius;
+  // Runs of consecutive points (the particles are in cell order: neighbours in
+  // space) within a box as wide as the radius share one descent of the index;
+  // each point then tests the run's triangles, their boxes first. (Measured on
+  // cases/sloshing_cylinder_3d: 3.9 % fewer instructions in all than a descent
+  // for each point; runs a third as wide share little at L0 = radius / 2.4.)
+  const double run_extent = radius;
+  std::vector<int> near_run;
+  for (std::size_t first = 0; first < positions.size();) {
+    Eigen::AlignedBox3d run(positions[first]);
+    std::size_t end = first + 1;
+    for (; end < positions.size(); ++end) {
+      Eigen::AlignedBox3d grown = run;
+      grown.extend(positions[end]);
+      if (grown.sizes().maxCoeff() > run_extent) break;
+      run = grown;
+    }
+    near_run.clear();
+    index.near_box(run, radius, near_run);
+    for (std::size_t i = first; i < end; ++i) {
+      const Eigen::Vector3d& x = positions[i];
+      for (const int t : near_run) {
+        if (index.box(t).squaredExteriorDistance(x) >= radius_squared) continue;
+        if (const auto closest = closest_point_within(x, mesh, t, radius_squared))
+          result.hits.push_back(WallHit{t, *closest});
+      }
+      result.offsets.push_back(static_cast<int>(result.hits.size()));
+    }
+    first = end;
   }
   return result;
 }
@@ -193,11 +221,17 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
     if (candidates == nullptr) {
       walls.index().within(x, cutoff, [&hits](const WallHit& hit) { hits.push_back(hit); });
     } else {
-      // The index's own test (TriangleIndex::visit_within), on the candidates only.
+      // The index's own test (TriangleIndex::visit_within), on the candidates only;
+      // where the point is still the one searched, on the closest points found then.
+      const bool unmoved = x == candidates->searched[i];
       for (int k = candidates->offsets[i]; k < candidates->offsets[i + 1]; ++k) {
-        const int t = candidates->triangles[static_cast<std::size_t>(k)];
-        const ClosestPoint closest = closest_point_on_triangle(x, mesh, t);
-        if (closest.squared_distance < cutoff_squared) hits.push_back(WallHit{t, closest});
+        const WallHit& candidate = candidates->hits[static_cast<std::size_t>(k)];
+        if (unmoved) {
+          if (candidate.closest.squared_distance < cutoff_squared) hits.push_back(candidate);
+          continue;
+        }
+        if (const auto closest = closest_point_within(x, mesh, candidate.triangle, cutoff_squared))
+          hits.push_back(WallHit{candidate.triangle, *closest});
       }
     }
     std::sort(hits.begin(), hits.end(), [](const WallHit& a, const WallHit& b) {

@@ -166,12 +166,14 @@ struct WallContacts {
 };
 
 /// The triangles within the wall tables' cutoff + skin of each of a set of points,
-/// in CSR form: a step's two searches (at x^n and at x~, fluid_solver.hpp) take
-/// their contacts from these without the spatial index, as long as no point
-/// moved by more than the skin and the wall did not move.
+/// in CSR form, with their closest points to the point searched: a step's two
+/// searches (at x^n and at x~, fluid_solver.hpp) take their contacts from these
+/// without the spatial index, as long as no point moved by more than the skin
+/// and the wall did not move. A point that has not moved at all (x^n) takes the
+/// closest points as they are: the same numbers a new test would compute.
 struct WallCandidates {
   std::vector<int> offsets{0};
-  std::vector<int> triangles;
+  std::vector<WallHit> hits;
   std::vector<Eigen::Vector3d> searched;  ///< the points searched
   double skin = 0.0;
   std::uint64_t wall_version = 0;  ///< the mesh's geometry_version() when searched

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 
 #include "common/geometry/triangle_closest_point.hpp"
 #include "sph_solver/walls/triangle_mesh.hpp"
@@ -28,6 +29,22 @@ using tankfsi::TriangleFeature;
 
 /// Closest point of triangle t of a mesh to p.
 [[nodiscard]] ClosestPoint closest_point_on_triangle(const Eigen::Vector3d& p, const TriangleMesh& mesh, int t);
+
+/// The closest point of triangle t to p when nearer than sqrt(radius_squared),
+/// else none. The distance to the triangle's plane is tested first: a dot
+/// product that spares the closest point's regions for most triangles a box
+/// test lets through. It refuses only planes farther than the radius by a
+/// relative 1e-10, far above the round-off of either distance, so the answer is
+/// that of the closest point's distance alone. (A degenerate triangle's normal
+/// is zero: its plane refuses nothing.)
+[[nodiscard]] inline std::optional<ClosestPoint> closest_point_within(const Eigen::Vector3d& p, const TriangleMesh& mesh,
+                                                                      int t, double radius_squared) {
+  const double height = (p - mesh.corner(t, 0)).dot(mesh.face_normals()[static_cast<std::size_t>(t)]);
+  if (height * height > radius_squared * (1.0 + 1e-10)) return std::nullopt;
+  const ClosestPoint closest = closest_point_on_triangle(p, mesh, t);
+  if (!(closest.squared_distance < radius_squared)) return std::nullopt;
+  return closest;
+}
 
 /// The normal that decides the side of p at a closest point of triangle t: the face
 /// normal, the edge pseudo-normal or the vertex (angle-weighted) normal by feature.

@@ -31,8 +31,11 @@ void TriangleIndex::rebuild() {
   order_.resize(static_cast<std::size_t>(n));
   std::iota(order_.begin(), order_.end(), 0);
   std::vector<Eigen::Vector3d> centroids(static_cast<std::size_t>(n));
-  for (int t = 0; t < n; ++t)
+  boxes_.resize(static_cast<std::size_t>(n));
+  for (int t = 0; t < n; ++t) {
     centroids[static_cast<std::size_t>(t)] = (mesh_->corner(t, 0) + mesh_->corner(t, 1) + mesh_->corner(t, 2)) / 3.0;
+    boxes_[static_cast<std::size_t>(t)] = triangle_box(*mesh_, t);
+  }
   nodes_.clear();
   nodes_.reserve(static_cast<std::size_t>(2 * (n / leaf_size + 1)));
   if (n > 0) build(0, n, centroids);
@@ -49,7 +52,7 @@ int TriangleIndex::build(int begin, int end, std::vector<Eigen::Vector3d>& centr
   Eigen::AlignedBox3d centre_box;
   for (int i = begin; i < end; ++i) {
     const int t = order_[static_cast<std::size_t>(i)];
-    box.extend(triangle_box(*mesh_, t));
+    box.extend(boxes_[static_cast<std::size_t>(t)]);
     centre_box.extend(centroids[static_cast<std::size_t>(t)]);
   }
   nodes_[static_cast<std::size_t>(index)].box = box;
@@ -77,11 +80,12 @@ int TriangleIndex::build(int begin, int end, std::vector<Eigen::Vector3d>& centr
 void TriangleIndex::refit() {
   if (order_.size() != mesh_->triangle_count())
     throw std::logic_error("TriangleIndex::refit: the mesh's triangle count changed; rebuild instead");
+  for (std::size_t t = 0; t < boxes_.size(); ++t) boxes_[t] = triangle_box(*mesh_, static_cast<int>(t));
   for (auto node = nodes_.rbegin(); node != nodes_.rend(); ++node) {
     if (node->count > 0) {
       node->box.setEmpty();
       for (int i = node->first; i < node->first + node->count; ++i)
-        node->box.extend(triangle_box(*mesh_, order_[static_cast<std::size_t>(i)]));
+        node->box.extend(boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])]);
     } else {
       const auto self = static_cast<std::size_t>(nodes_.rend() - node - 1);
       node->box = nodes_[self + 1].box.merged(nodes_[static_cast<std::size_t>(node->first)].box);
@@ -148,8 +152,30 @@ void TriangleIndex::visit_within(const Eigen::Vector3d& p, double radius, void (
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int t = order_[static_cast<std::size_t>(i)];
-        const ClosestPoint closest = closest_point_on_triangle(p, *mesh_, t);
-        if (closest.squared_distance < radius2) visit(context, WallHit{t, closest});
+        if (const auto closest = closest_point_within(p, *mesh_, t, radius2)) visit(context, WallHit{t, *closest});
+      }
+      continue;
+    }
+    stack[static_cast<std::size_t>(top++)] = node.first;
+    stack[static_cast<std::size_t>(top++)] = index + 1;
+  }
+}
+
+void TriangleIndex::near_box(const Eigen::AlignedBox3d& region, double radius, std::vector<int>& triangles) const {
+  require_current();
+  if (nodes_.empty() || !(radius > 0.0)) return;
+  const double radius2 = radius * radius;
+  std::array<int, max_depth> stack{};
+  int top = 0;
+  stack[static_cast<std::size_t>(top++)] = 0;
+  while (top > 0) {
+    const int index = stack[static_cast<std::size_t>(--top)];
+    const Node& node = nodes_[static_cast<std::size_t>(index)];
+    if (node.box.squaredExteriorDistance(region) >= radius2) continue;
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        const int t = order_[static_cast<std::size_t>(i)];
+        if (boxes_[static_cast<std::size_t>(t)].squaredExteriorDistance(region) < radius2) triangles.push_back(t);
       }
       continue;
     }

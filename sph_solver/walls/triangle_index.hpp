@@ -55,6 +55,14 @@ class TriangleIndex {
                  &visit);
   }
 
+  /// Appends to `triangles` every triangle whose bounding box comes within
+  /// `radius` of `region`: a superset of those within `radius` of any point of
+  /// the region, for a run of nearby points to share one descent of the tree.
+  void near_box(const Eigen::AlignedBox3d& region, double radius, std::vector<int>& triangles) const;
+
+  /// Triangle t's bounding box (as of the last build or refit).
+  [[nodiscard]] const Eigen::AlignedBox3d& box(int t) const { return boxes_[static_cast<std::size_t>(t)]; }
+
   [[nodiscard]] std::size_t node_count() const { return nodes_.size(); }
 
  private:
@@ -72,6 +80,7 @@ class TriangleIndex {
   const TriangleMesh* mesh_;
   std::vector<Node> nodes_;
   std::vector<int> order_;  ///< triangle indices, leaves own contiguous ranges
+  std::vector<Eigen::AlignedBox3d> boxes_;  ///< each triangle's box, by triangle index
   std::uint64_t version_ = 0;
 };
 

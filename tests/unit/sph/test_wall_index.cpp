@@ -1,5 +1,6 @@
-// TriangleIndex (BVH) queries against brute force over all triangles, on an icosphere
-// and an open cylinder, before and after a deformation of the wall (refit and rebuild).
+// TriangleIndex (BVH) queries (nearest, within a radius of a point, near a box)
+// against brute force over all triangles, on an icosphere and an open cylinder,
+// before and after a deformation of the wall (refit and rebuild).
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
@@ -38,6 +39,16 @@ std::vector<int> brute_within(const TriangleMesh& mesh, const Vector3d& p, doubl
   return found;
 }
 
+std::vector<int> brute_near_box(const TriangleMesh& mesh, const Eigen::AlignedBox3d& region, double radius) {
+  std::vector<int> found;
+  for (int t = 0; t < static_cast<int>(mesh.triangle_count()); ++t) {
+    Eigen::AlignedBox3d box(mesh.corner(t, 0));
+    box.extend(mesh.corner(t, 1)).extend(mesh.corner(t, 2));
+    if (box.squaredExteriorDistance(region) < radius * radius) found.push_back(t);
+  }
+  return found;
+}
+
 // Compares every query on `points`; returns how many found something within the radii.
 int compare_with_brute_force(const TriangleMesh& mesh, const TriangleIndex& index, const std::vector<Vector3d>& points) {
   int hits = 0;
@@ -60,6 +71,14 @@ int compare_with_brute_force(const TriangleMesh& mesh, const TriangleIndex& inde
       std::sort(found.begin(), found.end());
       REQUIRE(found == brute_within(mesh, p, radius));
       if (!found.empty()) ++hits;
+      // A region around p: every triangle whose box comes within the radius of
+      // it, so every triangle within the radius of p too.
+      const Eigen::AlignedBox3d region(p - Vector3d(0.05, 0.1, 0.0), p + Vector3d(0.1, 0.0, 0.05));
+      std::vector<int> near;
+      index.near_box(region, radius, near);
+      std::sort(near.begin(), near.end());
+      REQUIRE(near == brute_near_box(mesh, region, radius));
+      REQUIRE(std::includes(near.begin(), near.end(), found.begin(), found.end()));
     }
   }
   return hits;
