@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "sph_solver/walls/wall_kernel_table.hpp"
+
 namespace tankfsi::sph {
 namespace {
 
@@ -64,8 +66,8 @@ double extrapolation_distance(const Neighbourhood& n, const WallContact& c) {
 /// bare 0.05 the 3D corner fell back and its pressure held it with 70 % of g.)
 Eigen::Vector3d renormalised_gradient(const Neighbourhood& n, std::span<const WallContact> contacts,
                                       std::span<const BoundaryOverlap> overlaps, std::span<const CornerOctant> octants,
-                                      const Eigen::Vector3d& fluid_gradient) {
-  Eigen::Matrix3d fluid_moment = Eigen::Matrix3d::Identity();
+                                      const Eigen::Vector3d& fluid_gradient, double lattice_moment) {
+  Eigen::Matrix3d fluid_moment = lattice_moment * Eigen::Matrix3d::Identity();
   for (const WallContact& c : contacts) {
     const Eigen::Matrix3d normal_part = c.normal * c.normal.transpose();
     fluid_moment -= -c.values.z1 * (c.distance + c.values.depth1) * normal_part;
@@ -242,6 +244,15 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
   require_kernel_values(n);
   std::vector<Eigen::Vector3d> acceleration(at(n.owned));
   const double rho0 = n.model.density;
+  // The sums below give M grad P for a linear pressure on the lattice (M the
+  // lattice's moment, wall_kernel_table.hpp), in the liquid and, with the walls'
+  // tables, beside walls, in corners and at the surface alike: divided by M, a
+  // hydrostatic lattice is in balance to the tables' accuracy everywhere.
+  const double moment = lattice_moment(n.kernel, n.model.spacing);
+  const double calibration = 1.0 / moment;
+  const auto add_force = [&](const WallContact& c, int i, const Eigen::Vector3d& part) {
+    add_wall_force(n.wall_mesh, c, -calibration * mass[at(i)] * part, wall_force);
+  };
   for (int i = 0; i < n.owned; ++i) {
     const double rho_i = density[at(i)];
     const double p_i = pressure[at(i)] / (rho_i * rho_i);
@@ -279,7 +290,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
     const auto octants = n.walls.octants_of(i);
     const Eigen::Vector3d tangential_gradient =
         contacts.empty() ? Eigen::Vector3d::Zero()
-                         : renormalised_gradient(n, contacts, corners, octants, fluid_gradient);
+                         : renormalised_gradient(n, contacts, corners, octants, fluid_gradient, moment);
     for (const WallContact& c : contacts) {
       const double wall_pressure = pressure[at(i)] - wall_pressure_gradient(n.model, c, predicted_velocity[at(i)], dt) *
                                                          (c.distance + c.values.depth1);
@@ -287,7 +298,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
       const Eigen::Vector3d wall_part =
           -c.values.z1 * (rho0 * p_i + wall_pressure / rho0) * c.normal - c.values.z3 / rho0 * along_wall;
       sum += wall_part;
-      add_wall_force(n.wall_mesh, c, -mass[at(i)] * wall_part, wall_force);
+      add_force(c, i, wall_part);
     }
     // Overlaps, counted by both of their half-spaces: one copy of
     // -(1/rho0) sum_o V (P_i + P_k) grad W = -(2 P_i Q1 - S G) / rho0 back.
@@ -300,8 +311,8 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
           one_copy(o, normal_gradient(o.first) * o.normal_a + normal_gradient(o.second) * o.normal_b);
       sum += part;
       const auto [on_a, on_b] = split_between_walls(o, part);
-      add_wall_force(n.wall_mesh, contacts[at(o.first)], -mass[at(i)] * on_a, wall_force);
-      add_wall_force(n.wall_mesh, contacts[at(o.second)], -mass[at(i)] * on_b, wall_force);
+      add_force(contacts[at(o.first)], i, on_a);
+      add_force(contacts[at(o.second)], i, on_b);
     }
     // Octants: one wall copy back in with the linear field of the planes' normal
     // gradients, its force on the walls shared as an overlap's (each wall its
@@ -314,8 +325,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
       Eigen::Vector3d rest = part;
       for (std::size_t w = 0; w < at(wall_count); ++w) rest -= part.dot(o.normals[w]) * o.normals[w];
       for (std::size_t w = 0; w < at(wall_count); ++w)
-        add_wall_force(n.wall_mesh, contacts[at(o.contacts[w])],
-                       -mass[at(i)] * (part.dot(o.normals[w]) * o.normals[w] + rest / wall_count), wall_force);
+        add_force(contacts[at(o.contacts[w])], i, part.dot(o.normals[w]) * o.normals[w] + rest / wall_count);
     };
     // A box's corner of three walls.
     for (const CornerOctant& o : octants) {
@@ -333,9 +343,9 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
         const Eigen::Vector3d part =
             one_copy(o, normal_gradient(o.first) * o.normal_a + pressure[at(i)] / air->distance * o.normal_b);
         sum += part;
-        add_wall_force(n.wall_mesh, contacts[at(o.first)], -mass[at(i)] * part, wall_force);
+        add_force(contacts[at(o.first)], i, part);
       }
-    acceleration[at(i)] = sum;
+    acceleration[at(i)] = calibration * sum;
   }
   return acceleration;
 }

@@ -84,8 +84,11 @@ struct Neighbourhood {
 
 /// -(grad P / rho)_i = -sum_j m_j (P_i/rho_i^2 + P_j/rho_j^2) grad_i W_ij (eq 4), the
 /// wall term -Z1 n (rho0 P_i / rho_i^2 + P_w(d1) / rho0) and the air term of the free
-/// surface -Z1 n_s (rho0 P_i / rho_i^2 + P_air(d1) / rho0) (free_surface.hpp).
-/// `wall_force` gets -m_i times the wall part per vertex.
+/// surface -Z1 n_s (rho0 P_i / rho_i^2 + P_air(d1) / rho0) (free_surface.hpp),
+/// divided by the lattice's moment M (lattice_moment(), wall_kernel_table.hpp):
+/// these sums give M grad P for a linear pressure on the initial lattice, so a
+/// hydrostatic liquid on it is in balance inside and beside walls alike.
+/// `wall_force` gets -m_i times the wall part per vertex (divided by M too).
 [[nodiscard]] std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::span<const double> mass,
                                                                  std::span<const double> density,
                                                                  std::span<const double> pressure,

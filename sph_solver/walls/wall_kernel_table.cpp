@@ -39,6 +39,22 @@ double full_lattice_share(const Kernel& kernel, double spacing) {
 
 }  // namespace
 
+double lattice_moment(const Kernel& kernel, double spacing) {
+  require_table_spacing(kernel, spacing);
+  const double support = kernel.support_radius();
+  const int reach = static_cast<int>(support / spacing) + 1;
+  const int reach_c = kernel.dimension() == 2 ? 0 : reach;
+  double sum = 0.0;
+  for (int a = -reach; a <= reach; ++a)
+    for (int b = -reach; b <= reach; ++b)
+      for (int c = -reach_c; c <= reach_c; ++c) {
+        if (a == 0) continue;  // x_ij = 0 along the axis (the particle itself among them)
+        const double r = spacing * std::sqrt(static_cast<double>(a * a + b * b + c * c));
+        if (r < support) sum -= kernel.derivative(r) * (a * spacing) * (a * spacing) / r;
+      }
+  return sum * std::pow(spacing, kernel.dimension());
+}
+
 WallKernelTable::WallKernelTable(const Kernel& kernel, double spacing, int intervals)
     : cutoff_(kernel.support_radius()), spacing_(spacing) {
   require_table_spacing(kernel, spacing);

@@ -50,12 +50,23 @@ struct WallKernelValues {
   double z0 = 0, z1 = 0, z2 = 0;
   double depth0 = 0, depth1 = 0, depth2 = 0;
   /// Z3 = -L0^D sum_j W'(r) |l_j|^2 / (r (D - 1)), l_j the lateral offset of j: the
-  /// tangential part of -sum_j V_j x_ij (x) grad_i W_ij (a full lattice gives the
-  /// identity, so the fluid side holds 1 - Z3 of it). It completes the linear
+  /// tangential part of -sum_j V_j x_ij (x) grad_i W_ij (a full lattice gives
+  /// lattice_moment() times the identity, so the fluid side holds that less Z3 of
+  /// it). It completes the linear
   /// extrapolation of a pressure that also varies along the wall (hydrostatic
   /// pressure beside a vertical wall): >= 0.
   double z3 = 0;
 };
+
+/// -L0^D sum_j W'(r) x_j^2 / r over a full lattice of spacing L0 (x_j a lattice
+/// site's coordinate along one axis; the particle at the origin): the lattice's
+/// moment -sum_j V_j x_ij (x) grad_i W_ij is this times the identity (the lattice
+/// is cubic). The continuous kernel gives exactly 1, the lattice (a quadrature of
+/// its integral) not quite: 0.99938 for the quintic spline in 2D and 1.00426 for
+/// the quartic spline in 3D at h = 1.2 L0, 0.964 for Wendland C2 in 2D at h =
+/// 1.2 L0 (tests/unit/sph/test_wall_kernel_table.cpp). The symmetric pressure
+/// gradient of a linear pressure on the lattice is this times its gradient.
+[[nodiscard]] double lattice_moment(const Kernel& kernel, double spacing);
 
 class WallKernelTable {
  public:
