@@ -137,23 +137,19 @@ std::optional<WallHit> TriangleIndex::nearest(const Eigen::Vector3d& p, double m
   return best;
 }
 
-void TriangleIndex::visit_within(const Eigen::Vector3d& p, double radius, void (*visit)(void*, const WallHit&),
-                                 void* context) const {
-  require_current();
-  if (nodes_.empty() || !(radius > 0.0)) return;
-  const double radius2 = radius * radius;
+// Depth-first over the boxes that `near` (a squared distance of a box) keeps within
+// radius2, calling leaf(t) for every triangle of the leaves reached.
+template <class Distance, class Leaf>
+void TriangleIndex::descend(double radius2, Distance&& near, Leaf&& leaf) const {
   std::array<int, max_depth> stack{};
   int top = 0;
   stack[static_cast<std::size_t>(top++)] = 0;
   while (top > 0) {
     const int index = stack[static_cast<std::size_t>(--top)];
     const Node& node = nodes_[static_cast<std::size_t>(index)];
-    if (node.box.squaredExteriorDistance(p) >= radius2) continue;
+    if (near(node.box) >= radius2) continue;
     if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
-        const int t = order_[static_cast<std::size_t>(i)];
-        if (const auto closest = closest_point_within(p, *mesh_, t, radius2)) visit(context, WallHit{t, *closest});
-      }
+      for (int i = node.first; i < node.first + node.count; ++i) leaf(order_[static_cast<std::size_t>(i)]);
       continue;
     }
     stack[static_cast<std::size_t>(top++)] = node.first;
@@ -161,27 +157,26 @@ void TriangleIndex::visit_within(const Eigen::Vector3d& p, double radius, void (
   }
 }
 
+void TriangleIndex::visit_within(const Eigen::Vector3d& p, double radius, void (*visit)(void*, const WallHit&),
+                                 void* context) const {
+  require_current();
+  if (nodes_.empty() || !(radius > 0.0)) return;
+  const double radius2 = radius * radius;
+  descend(
+      radius2, [&p](const Eigen::AlignedBox3d& box) { return box.squaredExteriorDistance(p); },
+      [&](int t) {
+        if (const auto closest = closest_point_within(p, *mesh_, t, radius2)) visit(context, WallHit{t, *closest});
+      });
+}
+
 void TriangleIndex::near_box(const Eigen::AlignedBox3d& region, double radius, std::vector<int>& triangles) const {
   require_current();
   if (nodes_.empty() || !(radius > 0.0)) return;
   const double radius2 = radius * radius;
-  std::array<int, max_depth> stack{};
-  int top = 0;
-  stack[static_cast<std::size_t>(top++)] = 0;
-  while (top > 0) {
-    const int index = stack[static_cast<std::size_t>(--top)];
-    const Node& node = nodes_[static_cast<std::size_t>(index)];
-    if (node.box.squaredExteriorDistance(region) >= radius2) continue;
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
-        const int t = order_[static_cast<std::size_t>(i)];
-        if (boxes_[static_cast<std::size_t>(t)].squaredExteriorDistance(region) < radius2) triangles.push_back(t);
-      }
-      continue;
-    }
-    stack[static_cast<std::size_t>(top++)] = node.first;
-    stack[static_cast<std::size_t>(top++)] = index + 1;
-  }
+  const auto distance = [&region](const Eigen::AlignedBox3d& box) { return box.squaredExteriorDistance(region); };
+  descend(radius2, distance, [&](int t) {
+    if (distance(boxes_[static_cast<std::size_t>(t)]) < radius2) triangles.push_back(t);
+  });
 }
 
 }  // namespace tankfsi::sph

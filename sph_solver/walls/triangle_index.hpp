@@ -76,6 +76,8 @@ class TriangleIndex {
   void require_current() const;
   void visit_within(const Eigen::Vector3d& p, double radius, void (*visit)(void*, const WallHit&),
                     void* context) const;
+  template <class Distance, class Leaf>
+  void descend(double radius2, Distance&& near, Leaf&& leaf) const;
 
   const TriangleMesh* mesh_;
   std::vector<Node> nodes_;

@@ -22,8 +22,10 @@ void require_table_spacing(const Kernel& kernel, double spacing) {
 
 namespace {
 
-/// L0^D sum_j W(|x_j|) over the lattice sites x_j = L0 (a, b, c) inside the support.
-double full_lattice_share(const Kernel& kernel, double spacing) {
+/// L0^D sum_j term(a, r) over the lattice sites x_j = L0 (a, b, c) inside the
+/// support (c = 0 in 2D), r = |x_j|, the particle itself (r = 0) included.
+template <class Term>
+double full_lattice_sum(const Kernel& kernel, double spacing, Term&& term) {
   const double support = kernel.support_radius();
   const int reach = static_cast<int>(support / spacing) + 1;
   const int reach_c = kernel.dimension() == 2 ? 0 : reach;
@@ -32,27 +34,24 @@ double full_lattice_share(const Kernel& kernel, double spacing) {
     for (int b = -reach; b <= reach; ++b)
       for (int c = -reach_c; c <= reach_c; ++c) {
         const double r = spacing * std::sqrt(static_cast<double>(a * a + b * b + c * c));
-        if (r < support) sum += kernel.value(r);
+        if (r < support) sum += term(a, r);
       }
   return sum * std::pow(spacing, kernel.dimension());
+}
+
+/// L0^D sum_j W(|x_j|) over the full lattice.
+double full_lattice_share(const Kernel& kernel, double spacing) {
+  return full_lattice_sum(kernel, spacing, [&kernel](int, double r) { return kernel.value(r); });
 }
 
 }  // namespace
 
 double lattice_moment(const Kernel& kernel, double spacing) {
   require_table_spacing(kernel, spacing);
-  const double support = kernel.support_radius();
-  const int reach = static_cast<int>(support / spacing) + 1;
-  const int reach_c = kernel.dimension() == 2 ? 0 : reach;
-  double sum = 0.0;
-  for (int a = -reach; a <= reach; ++a)
-    for (int b = -reach; b <= reach; ++b)
-      for (int c = -reach_c; c <= reach_c; ++c) {
-        if (a == 0) continue;  // x_ij = 0 along the axis (the particle itself among them)
-        const double r = spacing * std::sqrt(static_cast<double>(a * a + b * b + c * c));
-        if (r < support) sum -= kernel.derivative(r) * (a * spacing) * (a * spacing) / r;
-      }
-  return sum * std::pow(spacing, kernel.dimension());
+  // Sites on the plane a = 0 (the particle itself among them) add x_j^2 = 0.
+  return full_lattice_sum(kernel, spacing, [&kernel, spacing](int a, double r) {
+    return a == 0 ? 0.0 : -kernel.derivative(r) * (a * spacing) * (a * spacing) / r;
+  });
 }
 
 WallKernelTable::WallKernelTable(const Kernel& kernel, double spacing, int intervals)

@@ -1,12 +1,14 @@
 #pragma once
-// A 2D tank of water at rest on its initial lattice, for the tests of the ISPH sums:
-// 0.6 m wide, filled to 0.4 m (L0 = 0.02 m, quintic spline, h = 1.2 L0), with the
-// hydrostatic pressure rho g (level - y), its neighbour list and wall contacts.
+// Liquids at rest on their initial lattice, for the tests of the ISPH sums: a 2D
+// tank of water 0.6 m wide, filled to 0.4 m (L0 = 0.02 m, quintic spline, h =
+// 1.2 L0), with the hydrostatic pressure rho g (level - y), its neighbour list and
+// wall contacts; a 3D liquid in any tank with its air; cases/hydrostatic_3d's oil.
 #include <cmath>
 #include <cstddef>
 #include <numbers>
 #include <vector>
 
+#include "sph_solver/isph/free_surface.hpp"
 #include "sph_solver/isph/particle_terms.hpp"
 #include "sph_solver/neighbours/cell_list.hpp"
 #include "sph_solver/particles/filling.hpp"
@@ -44,23 +46,26 @@ inline Particles fill_water(const FluidModel& model, const TriangleMesh& walls, 
   return fill_tank(walls, spec);
 }
 
-/// cases/hydrostatic_3d's tank and liquid: oil 0.5 m deep (quartic spline, L0 =
-/// 0.05 m, h = 1.2 L0) in an upright cylinder of R = 0.5 m, 0.6 m high, with 32
-/// wall facets (2 pi R / 2 L0, as the case's generator) and a dome roof of radius
-/// 1 m, filled on rings inside the facets' apothem with the hydrostatic pressure.
+/// cases/hydrostatic_3d's liquid: oil (quartic spline, L0 = 0.05 m, h = 1.2 L0).
+inline FluidModel oil_3d() {
+  FluidModel m = water();
+  m.dimension = 3;
+  m.kernel = KernelType::quartic_spline;
+  m.spacing = 0.05;
+  m.smoothing_length = 1.2 * m.spacing;
+  m.density = 860.0;
+  return m;
+}
+
+/// cases/hydrostatic_3d's tank and liquid: oil 0.5 m deep in an upright cylinder of
+/// R = 0.5 m, 0.6 m high, with 32 wall facets (2 pi R / 2 L0, as the case's
+/// generator) and a dome roof of radius 1 m, filled on rings inside the facets'
+/// apothem with the hydrostatic pressure.
 struct OilCylinder {
   static constexpr double radius = 0.5;
   static constexpr double depth = 0.5;
   static constexpr int segments = 32;
-  FluidModel model = [] {
-    FluidModel m = water();
-    m.dimension = 3;
-    m.kernel = KernelType::quartic_spline;
-    m.spacing = 0.05;
-    m.smoothing_length = 1.2 * m.spacing;
-    m.density = 860.0;
-    return m;
-  }();
+  FluidModel model = oil_3d();
   TriangleMesh walls = [this] {
     const double height = 0.6, dome = 1.0, edge = 2.0 * model.spacing;
     const DomeRoof roof{dome, static_cast<int>(std::ceil(dome * std::asin(radius / dome) / edge))};
@@ -78,6 +83,32 @@ struct OilCylinder {
     spec.cylinder_radius = radius * std::cos(std::numbers::pi / segments);
     return fill_tank(walls, spec);
   }();
+};
+
+/// A 3D liquid at rest in `walls` with its air: neighbours, wall contacts, kernel
+/// sums, the air and the densities it completes.
+struct StillLiquid3d {
+  const FluidModel& model;
+  const Kernel kernel{model.kernel, 3, model.smoothing_length};
+  const WallModel walls;
+  const Particles& particles;
+  const NeighbourList neighbours = [this] {
+    CellList cells(3);
+    cells.build(particles.position, kernel.support_radius());
+    return cells.neighbour_list(&kernel);
+  }();
+  const WallContacts contacts = find_wall_contacts(walls, particles.position, 3);
+  const std::vector<double> density = kernel_density(view({}), particles.mass);
+  const std::vector<SurfaceContact> air = surface_contacts(view({}), particles.mass, density, walls);
+  const std::vector<double> completed =
+      completed_density(density, air, model.density * walls.table().lattice_share());
+
+  StillLiquid3d(const FluidModel& m, const TriangleMesh& mesh, const Particles& p)
+      : model(m), walls(mesh, m, kernel), particles(p) {}
+  [[nodiscard]] Neighbourhood view(std::span<const SurfaceContact> surface) const {
+    return {kernel, model, particles.position, neighbours, contacts, walls.mesh(), particles.count(), surface};
+  }
+  [[nodiscard]] Neighbourhood view() const { return view(air); }
 };
 
 /// A tank filled to `level` at rest with hydrostatic pressure, and its neighbourhood.

@@ -48,32 +48,6 @@ struct AirTank : Tank {
   std::vector<double> completed = completed_density(density, air, model.density * walls.table().lattice_share());
 };
 
-/// A 3D liquid at rest in `walls` with its air: neighbours, wall contacts, kernel
-/// sums, the air and the densities it completes.
-struct StillLiquid3d {
-  const FluidModel& model;
-  const Kernel kernel{model.kernel, 3, model.smoothing_length};
-  const WallModel walls;
-  const Particles& particles;
-  const NeighbourList neighbours = [this] {
-    CellList cells(3);
-    cells.build(particles.position, kernel.support_radius());
-    return cells.neighbour_list(&kernel);
-  }();
-  const WallContacts contacts = find_wall_contacts(walls, particles.position, 3);
-  const std::vector<double> density = kernel_density(view({}), particles.mass);
-  const std::vector<SurfaceContact> air = surface_contacts(view({}), particles.mass, density, walls);
-  const std::vector<double> completed =
-      completed_density(density, air, model.density * walls.table().lattice_share());
-
-  StillLiquid3d(const FluidModel& m, const TriangleMesh& mesh, const Particles& p)
-      : model(m), walls(mesh, m, kernel), particles(p) {}
-  [[nodiscard]] Neighbourhood view(std::span<const SurfaceContact> surface) const {
-    return {kernel, model, particles.position, neighbours, contacts, walls.mesh(), particles.count(), surface};
-  }
-  [[nodiscard]] Neighbourhood view() const { return view(air); }
-};
-
 /// The PPE of the liquid at rest (v* = g dt, the walls' Neumann share the only
 /// source), solved to 1e-12: the worst |P - rho g (depth - z)| in rho g L0.
 double worst_hydrostatic_ppe_error(const StillLiquid3d& liquid, double depth) {
