@@ -8,7 +8,10 @@
 //   P_k = P_i + G . (x_k - x_i),  G = G_A n_A + G_B n_B (+ G_e e in 3D),
 // each plane giving its normal gradient: dP/dn of the Neumann condition for a wall
 // (particle_terms.hpp), P_i / delta for the air (free_surface.hpp); G_e, along the
-// edge, from the renormalised gradient.
+// edge, from the renormalised gradient. In the air's overlaps with walls the wall's
+// dP/dn is the predictor's acceleration part only, not the push against the
+// particle's approach, which stays whole in the wall's half-space
+// (contact_line_wall_gradient(), particle_terms.hpp).
 //
 // Pairs count as orthogonal when |n_A . n_B| < 0.25 (75.5 to 104.5 degrees); the
 // planes' normals are used as they are. Other pairs are not corrected (a known

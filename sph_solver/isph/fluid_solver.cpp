@@ -280,7 +280,8 @@ std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vecto
   std::vector<Eigen::Vector3d> forces(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
   // Only the walls' reactions are wanted, not the particles' accelerations.
   static_cast<void>(viscous_acceleration(n, mass, density, velocity, forces));
-  static_cast<void>(pressure_acceleration(n, mass, density, pressure, predicted, dt, forces));
+  const std::vector<Eigen::Vector3d> acceleration(at(owned), model_.body_force(ground_acceleration));
+  static_cast<void>(pressure_acceleration(n, mass, density, pressure, predicted, acceleration, dt, forces));
   return forces;
 }
 
@@ -338,12 +339,12 @@ std::vector<Eigen::Vector3d> FluidSolver::wall_motion_impulse(const Neighbourhoo
   const double dt = 1.0;
   const std::vector<Eigen::Vector3d> at_rest(at(n.owned), Eigen::Vector3d::Zero());
   std::vector<double> source(at(n.owned));
-  for (int i = 0; i < n.owned; ++i) source[at(i)] = -wall_laplacian_share(n, i, at_rest[0], dt);
+  for (int i = 0; i < n.owned; ++i) source[at(i)] = -wall_laplacian_share(n, i, at_rest[0], at_rest[0], dt);
   pressure.assign(at(n.owned), 0.0);
   ppe_.solve_assembled(source, pressure, residual_floor);
   halo_.exchange(pressure);
   std::vector<Eigen::Vector3d> impulse(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
-  static_cast<void>(pressure_acceleration(n, mass, density, pressure, at_rest, dt, impulse));
+  static_cast<void>(pressure_acceleration(n, mass, density, pressure, at_rest, at_rest, dt, impulse));
   return impulse;
 }
 
@@ -388,6 +389,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   // 1. Predictor at x^n; the PPE's positions x~ = x^n + dt v^n (fluid_solver.hpp).
   std::vector<Eigen::Vector3d> x_star(at(owned));
   std::vector<Eigen::Vector3d> v_star(at(owned));
+  std::vector<Eigen::Vector3d> a_star(at(owned));  // (v* - v^n) / dt
   for (int i = 0; i < owned; ++i) x_star[at(i)] = particles_.position[at(i)] + dt * velocity_n[at(i)];
   std::vector<double> density_now;  // kernel sums at x^n
   std::vector<Eigen::Vector3d> x_star_all;  // owned and ghosts
@@ -407,8 +409,9 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     density_now.assign(density.begin(), density.begin() + owned);
     const auto viscous = viscous_acceleration(n, mass, density, velocity_n, wall_force_);
     for (int i = 0; i < owned; ++i) {
-      v_star[at(i)] = velocity_n[at(i)] + dt * (viscous[at(i)] + body_force);
-      if (model_.dimension == 2) v_star[at(i)].z() = 0.0;
+      a_star[at(i)] = viscous[at(i)] + body_force;
+      if (model_.dimension == 2) a_star[at(i)].z() = 0.0;
+      v_star[at(i)] = velocity_n[at(i)] + dt * a_star[at(i)];
     }
   }
 
@@ -445,7 +448,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     const auto v_all = with_ghosts(halo_, v_star);
     const auto divergence = velocity_divergence(n, mass, density, v_all);
     for (int i = 0; i < owned; ++i) {
-      const double wall_share = wall_laplacian_share(n, i, v_star[at(i)], dt);
+      const double wall_share = wall_laplacian_share(n, i, v_star[at(i)], a_star[at(i)], dt);
       // The density error of the state x^n, against the rest density of the lattice;
       // the air completes it near the free surface. (At the PPE's positions the
       // density would hold the step's own compression too, which the divergence term
@@ -492,7 +495,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   {
     auto scope = stage("corrector");
     halo_.exchange(pressure);
-    const auto pressure_term = pressure_acceleration(n, mass, density, pressure, v_star, dt, wall_force_);
+    const auto pressure_term = pressure_acceleration(n, mass, density, pressure, v_star, a_star, dt, wall_force_);
     std::vector<Eigen::Vector3d> v_new(at(owned));
     for (int i = 0; i < owned; ++i) {
       v_new[at(i)] = v_star[at(i)] + dt * pressure_term[at(i)];

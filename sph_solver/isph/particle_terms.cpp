@@ -108,9 +108,15 @@ double wall_pressure_gradient(const FluidModel& model, const WallContact& contac
   return model.density / dt * (v_star - contact.velocity).dot(contact.normal);
 }
 
-double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d& v_star, double dt) {
+double contact_line_wall_gradient(const FluidModel& model, const WallContact& contact, const Eigen::Vector3d& a_star) {
+  return model.density * a_star.dot(contact.normal);
+}
+
+double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d& v_star, const Eigen::Vector3d& a_star,
+                            double dt) {
   const auto contacts = n.walls.of(i);
   const auto gradient = [&](int k) { return wall_pressure_gradient(n.model, contacts[at(k)], v_star, dt); };
+  const auto contact_line_gradient = [&](int k) { return contact_line_wall_gradient(n.model, contacts[at(k)], a_star); };
   double share = 0.0;
   for (const WallContact& c : contacts)
     share += 2.0 * c.values.z2 * wall_pressure_gradient(n.model, c, v_star, dt) * (c.distance + c.values.depth2);
@@ -118,9 +124,10 @@ double wall_laplacian_share(const Neighbourhood& n, int i, const Eigen::Vector3d
   for (const CornerOctant& o : n.walls.octants_of(i))
     share += o.laplacian_sum({gradient(o.contacts[0]), gradient(o.contacts[1]), gradient(o.contacts[2])});
   if (!n.surface.empty()) {
-    for (const BoundaryOverlap& o : n.surface[at(i)].overlaps()) share -= o.laplacian_sum(gradient(o.first), 0.0);
+    for (const BoundaryOverlap& o : n.surface[at(i)].overlaps())
+      share -= o.laplacian_sum(contact_line_gradient(o.first), 0.0);
     for (const CornerOctant& o : n.surface[at(i)].octants())
-      share += o.laplacian_sum({gradient(o.contacts[0]), gradient(o.contacts[1]), 0.0});
+      share += o.laplacian_sum({contact_line_gradient(o.contacts[0]), contact_line_gradient(o.contacts[1]), 0.0});
   }
   return share;
 }
@@ -239,7 +246,8 @@ std::vector<double> velocity_divergence(const Neighbourhood& n, std::span<const 
 
 std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::span<const double> mass,
                                                    std::span<const double> density, std::span<const double> pressure,
-                                                   std::span<const Eigen::Vector3d> predicted_velocity, double dt,
+                                                   std::span<const Eigen::Vector3d> predicted_velocity,
+                                                   std::span<const Eigen::Vector3d> predicted_acceleration, double dt,
                                                    std::vector<Eigen::Vector3d>& wall_force) {
   require_kernel_values(n);
   std::vector<Eigen::Vector3d> acceleration(at(n.owned));
@@ -270,9 +278,12 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
       return wall_pressure_gradient(n.model, contacts[at(k)], predicted_velocity[at(i)], dt);
     };
     const SurfaceContact* air = !n.surface.empty() && n.surface[at(i)].active ? &n.surface[at(i)] : nullptr;
+    const auto contact_line_gradient = [&](int k) {
+      return contact_line_wall_gradient(n.model, contacts[at(k)], predicted_acceleration[at(i)]);
+    };
     // The linear pressure in an octant of two walls and the air: each plane's normal gradient.
     const auto air_octant_gradient = [&](const CornerOctant& o) -> Eigen::Vector3d {
-      return normal_gradient(o.contacts[0]) * o.normals[0] + normal_gradient(o.contacts[1]) * o.normals[1] +
+      return contact_line_gradient(o.contacts[0]) * o.normals[0] + contact_line_gradient(o.contacts[1]) * o.normals[1] +
              pressure[at(i)] / air->distance * o.normals[2];
     };
     if (air != nullptr) {
@@ -282,7 +293,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
       sum -= air->values.z1 * rho0 * p_i * air->pressure_sum_factor() * air->normal;
       fluid_gradient += air->values.z1 * air->pressure_difference_factor() * pressure[at(i)] * air->normal;
       for (const BoundaryOverlap& o : air->overlaps())
-        fluid_gradient -= o.pressure_difference_sum(normal_gradient(o.first) * o.normal_a +
+        fluid_gradient -= o.pressure_difference_sum(contact_line_gradient(o.first) * o.normal_a +
                                                     pressure[at(i)] / air->distance * o.normal_b);
       for (const CornerOctant& o : air->octants())
         fluid_gradient += o.pressure_difference_sum(air_octant_gradient(o));
@@ -342,7 +353,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
         // A contact line: the overlap is air, which the wall's half-space counted as
         // liquid; the copy comes off the wall.
         const Eigen::Vector3d part =
-            one_copy(o, normal_gradient(o.first) * o.normal_a + pressure[at(i)] / air->distance * o.normal_b);
+            one_copy(o, contact_line_gradient(o.first) * o.normal_a + pressure[at(i)] / air->distance * o.normal_b);
         sum += part;
         add_force(contacts[at(o.first)], i, part);
       }

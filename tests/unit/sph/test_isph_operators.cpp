@@ -51,10 +51,11 @@ TEST_CASE("hydrostatic pressure balances gravity beside the floor and the side w
   const Tank tank;
   const double dt = 1e-3;
   // v* = v^n + dt F with v^n = 0: the Neumann wall pressure gradient is rho0 g·n.
-  std::vector<Vector3d> v_star(tank.particles.size(), Vector3d(0.0, -g * dt, 0.0));
+  const std::vector<Vector3d> v_star(tank.particles.size(), Vector3d(0.0, -g * dt, 0.0));
+  const std::vector<Vector3d> a_star(tank.particles.size(), Vector3d(0.0, -g, 0.0));
   std::vector<Vector3d> wall_force(tank.walls.mesh().vertex_count(), Vector3d::Zero());
   const auto acceleration = pressure_acceleration(tank.view(), tank.particles.mass, tank.density,
-                                                  tank.particles.pressure, v_star, dt, wall_force);
+                                                  tank.particles.pressure, v_star, a_star, dt, wall_force);
   double worst_floor = 0.0, worst_side = 0.0, worst_inside = 0.0;
   for (int i = 0; i < tank.particles.count(); ++i) {
     if (!tank.submerged(i)) continue;
@@ -80,9 +81,10 @@ TEST_CASE("hydrostatic pressure balances gravity in a 3D box: inside, at the fac
   const Neighbourhood n = liquid.view({});
   const double dt = 1e-3;
   const std::vector<Vector3d> v_star(particles.size(), Vector3d(0.0, 0.0, -g * dt));
+  const std::vector<Vector3d> a_star(particles.size(), Vector3d(0.0, 0.0, -g));
   std::vector<Vector3d> wall_force(box.vertex_count(), Vector3d::Zero());
   const auto acceleration =
-      pressure_acceleration(n, particles.mass, liquid.density, particles.pressure, v_star, dt, wall_force);
+      pressure_acceleration(n, particles.mass, liquid.density, particles.pressure, v_star, a_star, dt, wall_force);
   // Worst |a_p + g| / g by the number of walls within the support: 0 inside, 1 at a
   // face, 2 along an edge, 3 in a corner.
   std::array<double, 4> worst{};
