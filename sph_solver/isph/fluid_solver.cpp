@@ -272,7 +272,10 @@ std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vecto
   halo_.exchange(pressure);
   const Configuration now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
   const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
-  const auto density = with_ghosts(halo_, kernel_density(n, mass));
+  // Read against the lattice as in a step (completed_density()); no air here.
+  const auto density =
+      with_ghosts(halo_, completed_density(kernel_density(n, mass), std::vector<SurfaceContact>(at(owned)),
+                                           model_.density * walls_.table().lattice_share(), model_.density));
   // The walls' Neumann pressure gradient rho (v* - v_w) . n / dt of the liquid
   // at rest, v* = dt F on resting walls: rho F . n whatever dt.
   const double dt = 1.0;
@@ -316,7 +319,8 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
   const std::vector<SurfaceContact> air = surface_contacts(n, mass, kernel_sum, walls_);
   n.surface = air;
   const auto density =
-      with_ghosts(halo_, completed_density(kernel_sum, air, model_.density * walls_.table().lattice_share()));
+      with_ghosts(halo_, completed_density(kernel_sum, air, model_.density * walls_.table().lattice_share(),
+                                           model_.density));
   ppe_.assemble(n, mass, density, index, std::vector<unsigned char>(mass.size(), 0));
   std::vector<double> matrix(count * count, 0.0);
   std::vector<double> pressure;
@@ -443,7 +447,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     // near it (free_surface.hpp): from here on their density is the rest density.
     air = surface_contacts(n, mass, kernel_sum, walls_);
     n.surface = air;
-    density = with_ghosts(halo_, completed_density(kernel_sum, air, rest_density));
+    density = with_ghosts(halo_, completed_density(kernel_sum, air, rest_density, rho0));
     predicted_density_.assign(kernel_sum.begin(), kernel_sum.begin() + owned);
     const auto v_all = with_ghosts(halo_, v_star);
     const auto divergence = velocity_divergence(n, mass, density, v_all);

@@ -184,10 +184,11 @@ std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<c
 }
 
 std::vector<double> completed_density(std::span<const double> density, std::span<const SurfaceContact> contacts,
-                                      double rest_density) {
-  std::vector<double> completed(density.begin(), density.begin() + static_cast<std::ptrdiff_t>(contacts.size()));
+                                      double lattice_density, double rest_density) {
+  std::vector<double> completed(contacts.size());
+  const double to_lattice = rest_density / lattice_density;
   for (std::size_t i = 0; i < contacts.size(); ++i)
-    if (contacts[i].active) completed[i] = rest_density;
+    completed[i] = contacts[i].active ? rest_density : density[i] * to_lattice;
   return completed;
 }
 

@@ -55,8 +55,9 @@
 // layers of a lattice): a farther surface is lost in the density noise of a liquid
 // in motion (1e-4), and its air share (1e-4 at the third layer) is as small. No
 // free-surface flag is involved, so nothing switches with a flag. Each of them has
-// its density completed to rho_L (the air's share) for the volumes, the divergence
-// and the density-error term. A surface that close has its first layer (deficit
+// its density completed (the air's share: rho_L, read against the lattice rho0;
+// completed_density()) for the volumes and the divergence, and no density error.
+// A surface that close has its first layer (deficit
 // Z0(L0) or more) between it and the particle: a particle with a smaller deficit
 // and no such neighbour within delta + L0/4 gets no air. Walls are not exact enough
 // to go without this: a curved wall of facets twice L0 wide completes its
@@ -91,9 +92,18 @@ namespace tankfsi::sph {
 [[nodiscard]] std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<const double> mass,
                                                            std::span<const double> density, const WallModel& walls);
 
-/// The density completed by the air: the rest density where a contact is active
-/// (it has a deficit by construction), the kernel sum elsewhere. Owned particles.
+/// The density the step's sums divide by (volumes m / rho), completed by the air
+/// and read against the lattice: rho0 where a contact is active (it has a deficit
+/// by construction), the kernel sum times rho0 / rho_L elsewhere, rho_L =
+/// `lattice_density` the kernel sum of a full lattice (rho0
+/// WallKernelTable::lattice_share()). So a lattice's volumes are L0^D, the volume
+/// the wall tables are summed with. (Against the raw kernel sum the Wendland C2
+/// kernel at h = 1.5 L0, whose lattice sum is 1.0031, put the PPE's pressure of a
+/// 3D box at rest 0.5-0.9 % above rho g (H - z); read against the lattice, within
+/// 0.03 % below the top two layers. The quartic spline's lattice sum is 1.00002.)
+/// Owned particles.
 [[nodiscard]] std::vector<double> completed_density(std::span<const double> density,
-                                                    std::span<const SurfaceContact> contacts, double rest_density);
+                                                    std::span<const SurfaceContact> contacts, double lattice_density,
+                                                    double rest_density);
 
 }  // namespace tankfsi::sph

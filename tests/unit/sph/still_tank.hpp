@@ -101,7 +101,7 @@ struct StillLiquid3d {
   const std::vector<double> density = kernel_density(view({}), particles.mass);
   const std::vector<SurfaceContact> air = surface_contacts(view({}), particles.mass, density, walls);
   const std::vector<double> completed =
-      completed_density(density, air, model.density * walls.table().lattice_share());
+      completed_density(density, air, model.density * walls.table().lattice_share(), model.density);
 
   StillLiquid3d(const FluidModel& m, const TriangleMesh& mesh, const Particles& p)
       : model(m), walls(mesh, m, kernel), particles(p) {}
