@@ -273,9 +273,9 @@ std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vecto
   const Configuration now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
   const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
   // Read against the lattice as in a step (completed_density()); no air here.
-  const auto density =
-      with_ghosts(halo_, completed_density(kernel_density(n, mass), std::vector<SurfaceContact>(at(owned)),
-                                           model_.density * walls_.table().lattice_share(), model_.density));
+  const auto density = with_ghosts(
+      halo_, density_against_lattice(kernel_density(n, mass), model_.density * walls_.table().lattice_share(),
+                                     model_.density));
   // The walls' Neumann pressure gradient rho (v* - v_w) . n / dt of the liquid
   // at rest, v* = dt F on resting walls: rho F . n whatever dt.
   const double dt = 1.0;

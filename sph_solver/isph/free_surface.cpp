@@ -183,12 +183,17 @@ std::vector<SurfaceContact> surface_contacts(const Neighbourhood& n, std::span<c
   return contacts;
 }
 
+std::vector<double> density_against_lattice(std::span<const double> density, double lattice_density, double rho0) {
+  std::vector<double> read(density.begin(), density.end());
+  for (double& d : read) d *= rho0 / lattice_density;
+  return read;
+}
+
 std::vector<double> completed_density(std::span<const double> density, std::span<const SurfaceContact> contacts,
-                                      double lattice_density, double rest_density) {
-  std::vector<double> completed(contacts.size());
-  const double to_lattice = rest_density / lattice_density;
+                                      double lattice_density, double rho0) {
+  std::vector<double> completed = density_against_lattice(density.first(contacts.size()), lattice_density, rho0);
   for (std::size_t i = 0; i < contacts.size(); ++i)
-    completed[i] = contacts[i].active ? rest_density : density[i] * to_lattice;
+    if (contacts[i].active) completed[i] = rho0;
   return completed;
 }
 

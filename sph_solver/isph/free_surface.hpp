@@ -99,11 +99,17 @@ namespace tankfsi::sph {
 /// WallKernelTable::lattice_share()). So a lattice's volumes are L0^D, the volume
 /// the wall tables are summed with. (Against the raw kernel sum the Wendland C2
 /// kernel at h = 1.5 L0, whose lattice sum is 1.0031, put the PPE's pressure of a
-/// 3D box at rest 0.5-0.9 % above rho g (H - z); read against the lattice, within
-/// 0.03 % below the top two layers. The quartic spline's lattice sum is 1.00002.)
+/// 3D box at rest 0.5-0.9 % above rho g (H - z); read against the lattice, 0.012-
+/// 0.025 % in the layers measured below the top two (the first, second, third and
+/// sixth). The quartic spline's lattice sum is 1.00002.)
 /// Owned particles.
 [[nodiscard]] std::vector<double> completed_density(std::span<const double> density,
                                                     std::span<const SurfaceContact> contacts, double lattice_density,
-                                                    double rest_density);
+                                                    double rho0);
+
+/// Kernel sums read against the lattice, rho rho0 / rho_L, without the air (as
+/// completed_density() where no contact is active).
+[[nodiscard]] std::vector<double> density_against_lattice(std::span<const double> density, double lattice_density,
+                                                          double rho0);
 
 }  // namespace tankfsi::sph

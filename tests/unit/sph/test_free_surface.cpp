@@ -48,6 +48,22 @@ struct AirTank : Tank {
   std::vector<double> completed = completed_density(density, air, model.density * walls.table().lattice_share(), model.density);
 };
 
+/// Water at rest in a 0.3 x 0.3 m box of 12 triangles, 0.2 m deep (L0 = 0.02 m,
+/// quartic spline, h = 1.2 L0, 2,250 particles) with the hydrostatic pressure and its air.
+struct WaterBox3d {
+  static constexpr double side = 0.3;
+  static constexpr double depth = 0.2;
+  FluidModel model = [] {
+    FluidModel m = water();
+    m.dimension = 3;
+    m.kernel = KernelType::quartic_spline;
+    return m;
+  }();
+  TriangleMesh box = make_box(Vector3d::Zero(), Vector3d(side, side, 0.3), NormalSide::inward);
+  Particles particles = fill_water(model, box, depth);
+  StillLiquid3d liquid{model, box, particles};
+};
+
 /// The PPE of the liquid at rest (v* = g dt, the walls' Neumann share the only
 /// source), solved to 1e-12: the worst |P - rho g (depth - z)| in rho g L0.
 double worst_hydrostatic_ppe_error(const StillLiquid3d& liquid, double depth) {
@@ -250,9 +266,8 @@ TEST_CASE("a drop alone in the air falls freely: air all round, no pressure", "[
 }
 
 TEST_CASE("a 3D box at rest: corners of three walls and edges at the surface in equilibrium", "[free_surface]") {
-  // Water at rest in a 0.3 x 0.3 m box of 12 triangles, 0.2 m deep (L0 = 0.02 m,
-  // quartic spline, h = 1.2 L0, 2,250 particles) with the hydrostatic pressure: every
-  // particle's pressure acceleration must balance gravity. Measured worst |a_p + g| / g:
+  // WaterBox3d with the hydrostatic pressure: every particle's pressure
+  // acceleration must balance gravity. Measured worst |a_p + g| / g:
   // the floor's corners 5.1e-5, the vertical edges at the surface 3.2e-5, the side
   // walls 9.7e-5, elsewhere 9.4e-5 (the tables' interpolation). Before the pressure
   // gradient was divided by the lattice's moment (1.0043; wall_kernel_table.hpp):
@@ -261,13 +276,9 @@ TEST_CASE("a 3D box at rest: corners of three walls and edges at the surface in 
   // without the octant of two walls and the air the edges at the surface had
   // 5.4e-2, their surface 0.446 L0 away instead of 0.5 L0. 3e-4 holds the first
   // and fails the others.
-  FluidModel model = water();
-  model.dimension = 3;
-  model.kernel = KernelType::quartic_spline;
-  const double side = 0.3, depth = 0.2;
-  const TriangleMesh box = make_box(Vector3d::Zero(), Vector3d(side, side, 0.3), NormalSide::inward);
-  const Particles particles = fill_water(model, box, depth);
-  const StillLiquid3d liquid(model, box, particles);
+  const WaterBox3d water_box;
+  const auto& [model, box, particles, liquid] = water_box;
+  const double side = WaterBox3d::side, depth = WaterBox3d::depth;
   const auto& air = liquid.air;
   const int n = particles.count();
   const double dt = 1e-3;
@@ -302,7 +313,7 @@ TEST_CASE("a 3D box at rest: corners of three walls and edges at the surface in 
 }
 
 TEST_CASE("at a contact line the walls stop an approach along their normals only", "[free_surface]") {
-  // The liquid of the box above moving as a whole towards the wall x = 0 at 0.1 m/s,
+  // WaterBox3d's liquid moving as a whole towards the wall x = 0 at 0.1 m/s,
   // no pressure and no body force: what acts is the walls' Neumann condition against
   // the approach, rho0 (v^n - v_wall)·n / dt. A wall's half-space is symmetric along
   // the wall; the air's overlap with it (a contact line, and the octant of two walls
@@ -311,13 +322,8 @@ TEST_CASE("at a contact line the walls stop an approach along their normals only
   // out of the overlap carried the approach too, the top layer at the contact line
   // was pushed up with 0.40 times its push off the wall (0.65 at a vertical edge),
   // the second layer with 0.032.
-  FluidModel model = water();
-  model.dimension = 3;
-  model.kernel = KernelType::quartic_spline;
-  const double side = 0.3, depth = 0.2;
-  const TriangleMesh box = make_box(Vector3d::Zero(), Vector3d(side, side, 0.3), NormalSide::inward);
-  const Particles particles = fill_water(model, box, depth);
-  const StillLiquid3d liquid(model, box, particles);
+  const WaterBox3d water_box;
+  const auto& [model, box, particles, liquid] = water_box;
   const int n = particles.count();
   const double dt = 1e-3;
   const std::vector<Vector3d> v_star(particles.size(), Vector3d(-0.1, 0.0, 0.0));
