@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Benchmarks; figures go to bench/ (JSON and a Markdown table).
 # Usage: scripts/bench.sh fluid|structure|coupling|fsi|wcsph [--quick]
-#   fluid: 2D dam break at L0 0.01 and 0.005 m, 3D tank >= 100k particles, 1 vs 2 ranks
+#   fluid: 2D dam break at L0 0.01 and 0.005 m (2 s, and 0.6 s to the far-wall impact), 3D tank >= 100k
+#          particles, 1 vs 2 ranks
 #          (--quick: a coarse dam break that runs in minutes on 2 cores; --case NAME, --ranks 1,2:
 #          a part of the set, its rows replacing the same rows in bench/fluid_figures.*)
 #   structure: the paper's tank mesh (cases/tank3d_dry, ~56k equations) on 1 and 2 ranks:
