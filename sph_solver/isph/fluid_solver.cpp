@@ -509,7 +509,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     }
     if (model_.shifting) {
       const double speed = global_max(comm_, largest_norm(v_new));
-      const double diffusion = model_.shifting_coefficient * model_.smoothing_length * speed * dt;
+      const double diffusion = model_.shifting_diffusion(speed, dt);
       const double cap = 0.2 * model_.spacing;
       const auto gradient = concentration_gradient(n, mass, density);
       std::vector<Eigen::Vector3d> shift(at(owned), Eigen::Vector3d::Zero());
