@@ -1,10 +1,12 @@
 #!/usr/bin/python3
-"""Runs one MPMD job of two partner programs and checks how it ends.
+"""Runs one MPI job — two partner programs (MPMD) or a single program — and
+checks how it ends.
 
 Usage: check_coupled_job.py --mpiexec MPIEXEC [--expect-failure PATTERN]...
                             [--within SECONDS] -- FIRST ARGS... : SECOND ARGS...
 
-The part after "--" is the mpiexec command line ("-np 2 prog a : -np 1 prog b").
+The part after "--" is the mpiexec command line ("-np 2 prog a : -np 1 prog b",
+or "-np 2 prog a").
 Without --expect-failure the job must exit 0. With it, the job must exit
 non-zero within --within seconds (default 60) and its output must contain every
 PATTERN: a partner that fails or dies takes the job down with its message,
