@@ -22,7 +22,7 @@
 #include <span>
 
 #include "fem_solver/assembly/linear_solve.hpp"
-#include "fem_solver/assembly/petsc_handle.hpp"
+#include "common/run/petsc_handle.hpp"
 
 namespace tankfsi::fem {
 

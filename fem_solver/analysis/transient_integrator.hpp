@@ -7,7 +7,7 @@
 
 #include "fem_solver/analysis/rayleigh_damping.hpp"
 #include "fem_solver/assembly/linear_solve.hpp"
-#include "fem_solver/assembly/petsc_handle.hpp"
+#include "common/run/petsc_handle.hpp"
 
 namespace tankfsi::fem {
 

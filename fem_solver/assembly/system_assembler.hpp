@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fem_solver/assembly/dof_map.hpp"
-#include "fem_solver/assembly/petsc_handle.hpp"
+#include "common/run/petsc_handle.hpp"
 #include "fem_solver/assembly/shell_model.hpp"
 
 namespace tankfsi::fem {

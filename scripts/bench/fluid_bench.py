@@ -67,6 +67,7 @@ def run(solver, case, settings, ranks, folder):
         "wall_s_per_simulated_s": fluid["wall_seconds_per_simulated_second"],
         "ppe_iterations_mean": fluid["ppe_iterations"]["mean"],
         "ppe_iterations_max": fluid["ppe_iterations"]["max"],
+        "ppe_hierarchy_builds": fluid.get("ppe_hierarchy_builds", fluid["steps"]),
         "stage_share": {name: s["seconds"] / total for name, s in stages.items()},
         "peak_memory_per_particle_kib": peak_kib * ranks / max(fluid["particles"], 1),
     }

@@ -64,6 +64,7 @@ FluidModel read_model(const CaseConfig& config) {
   if (m.preconditioner_radius > 0.0 && m.preconditioner_radius < 1.0)
     throw config.error_at("fluid.ppe.preconditioner_radius",
                           "must be 0 (the operator itself) or at least 1 particle spacing (the nearest neighbours)");
+  m.keep_hierarchy = config.boolean("fluid.ppe.keep_hierarchy");
   m.shifting = config.boolean("fluid.shifting.enabled");
   if (m.shifting) {
     m.shifting_coefficient = config.real("fluid.shifting.coefficient");

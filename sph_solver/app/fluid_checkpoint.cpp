@@ -1,6 +1,8 @@
 #include "sph_solver/app/fluid_checkpoint.hpp"
 
+#include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace tankfsi::sph {
 namespace {
@@ -16,6 +18,58 @@ std::vector<Eigen::Vector3d> vectors_of(const std::vector<double>& values) {
   std::vector<Eigen::Vector3d> vectors(values.size() / 3);
   for (std::size_t i = 0; i < vectors.size(); ++i) vectors[i] = Eigen::Vector3d(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
   return vectors;
+}
+
+const char* const hierarchy_group = "/fluid/pressure_hierarchy";
+
+std::string in_hierarchy(const char* name) { return std::string(hierarchy_group) + "/" + name; }
+
+/// The kept hierarchy's basis (kept_hierarchy.hpp) and when the next is built.
+void write_kept_hierarchy(Hdf5File& file, const PressurePoisson::KeptState& kept) {
+  const KeptHierarchy::Basis& basis = kept.hierarchy->basis();
+  std::vector<std::int64_t> lengths(basis.ids.size());
+  for (std::size_t i = 0; i < lengths.size(); ++i) lengths[i] = basis.row_begin[i + 1] - basis.row_begin[i];
+  file.write_distributed_1d(in_hierarchy("ids"), std::span<const std::int64_t>(basis.ids));
+  file.write_distributed_1d(in_hierarchy("row_lengths"), std::span<const std::int64_t>(lengths));
+  file.write_distributed_1d(in_hierarchy("columns"), std::span<const std::int64_t>(basis.columns));
+  file.write_distributed_1d(in_hierarchy("values"), std::span<const double>(basis.values));
+  const std::vector<std::int64_t> rows{static_cast<std::int64_t>(basis.ids.size())};
+  const std::vector<std::int64_t> entries{static_cast<std::int64_t>(basis.columns.size())};
+  file.write_distributed_1d(in_hierarchy("rank_rows"), std::span<const std::int64_t>(rows));
+  file.write_distributed_1d(in_hierarchy("rank_entries"), std::span<const std::int64_t>(entries));
+  file.write_attribute(hierarchy_group, "first_iterations", static_cast<std::int64_t>(kept.first_iterations));
+  file.write_attribute(hierarchy_group, "rebuild", static_cast<std::int64_t>(kept.rebuild ? 1 : 0));
+}
+
+/// This rank's share of what write_kept_hierarchy() wrote on as many ranks:
+/// the same hierarchy, built from the same rows.
+PressurePoisson::KeptState read_kept_hierarchy(MPI_Comm comm, const Hdf5File& file) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const auto rows = file.read_rows_int64(in_hierarchy("rank_rows"), 0, size);
+  const auto entries = file.read_rows_int64(in_hierarchy("rank_entries"), 0, size);
+  std::int64_t first_row = 0, first_entry = 0;
+  for (int r = 0; r < rank; ++r) {
+    first_row += rows[static_cast<std::size_t>(r)];
+    first_entry += entries[static_cast<std::size_t>(r)];
+  }
+  const std::int64_t row_count = rows[static_cast<std::size_t>(rank)];
+  const std::int64_t entry_count = entries[static_cast<std::size_t>(rank)];
+  KeptHierarchy::Basis basis;
+  basis.ids = file.read_rows_int64(in_hierarchy("ids"), first_row, row_count);
+  const auto lengths = file.read_rows_int64(in_hierarchy("row_lengths"), first_row, row_count);
+  basis.row_begin.assign(1, 0);
+  for (const std::int64_t length : lengths) basis.row_begin.push_back(basis.row_begin.back() + length);
+  if (basis.row_begin.back() != entry_count)
+    throw std::runtime_error(std::string(hierarchy_group) + ": the row lengths do not add up to the entries");
+  basis.columns = file.read_rows_int64(in_hierarchy("columns"), first_entry, entry_count);
+  basis.values = file.read_rows_double(in_hierarchy("values"), first_entry, entry_count);
+  PressurePoisson::KeptState kept;
+  kept.hierarchy = std::make_shared<KeptHierarchy>(comm, std::move(basis));
+  kept.first_iterations = static_cast<int>(file.read_int64_attribute(hierarchy_group, "first_iterations"));
+  kept.rebuild = file.read_int64_attribute(hierarchy_group, "rebuild") != 0;
+  return kept;
 }
 
 }  // namespace
@@ -37,6 +91,8 @@ void write_fluid_state(Hdf5File& file, const FluidSolver& solver, const nlohmann
   file.write_attribute("/fluid", "removed_count", static_cast<std::int64_t>(solver.removed_count()));
   file.write_attribute("/fluid", "removed_volume", solver.removed_volume());
   file.write_attribute("/fluid", "run_state", run_state.dump());
+  const PressurePoisson::KeptState kept = solver.kept_pressure_hierarchy();
+  if (kept.hierarchy != nullptr) write_kept_hierarchy(file, kept);  // on every rank or none
 }
 
 FluidRestart read_fluid_state(MPI_Comm comm, const RestartPoint& point) {
@@ -69,6 +125,10 @@ FluidRestart read_fluid_state(MPI_Comm comm, const RestartPoint& point) {
   restart.state.removed_count = file.read_int64_attribute("/fluid", "removed_count");
   restart.state.removed_volume = file.read_double_attribute("/fluid", "removed_volume");
   restart.run_state = nlohmann::json::parse(file.read_string_attribute("/fluid", "run_state"));
+  // The kept hierarchy goes on only with the rows it was built on (on
+  // another rank count a new one is built at the first step).
+  if (point.ranks == size && file.exists(in_hierarchy("ids")))
+    restart.state.pressure_solver = read_kept_hierarchy(comm, file);
   return restart;
 }
 

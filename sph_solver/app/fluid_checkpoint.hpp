@@ -9,10 +9,15 @@
 //   attributes: steps, removed_count, removed_volume, and run_state (JSON: what
 //   the time loop keeps — next output times, the step controller's last
 //   speed and pressure, the running statistics).
+//   pressure_hierarchy/{ids, row_lengths, columns, values, rank_rows,
+//       rank_entries}, attributes first_iterations, rebuild: the pressure
+//       solver's kept hierarchy's rows (fluid.ppe.keep_hierarchy;
+//       kept_hierarchy.hpp), when there is one.
 //
 // That is the whole state a step starts from: the walls are the case's (a
 // coupled run's moving ones are put where the coupling says at each step), the
-// PPE starts from the particles' pressures, and nothing is random. Read on as
+// PPE starts from the particles' pressures (and the kept hierarchy, built
+// again from its rows), and nothing is random. Read on as
 // many ranks, each rank takes its own rows back with the cuts: the run goes on
 // bit for bit. On another rank count each rank takes an even slice of the
 // rows and the particles are balanced anew: the same physics, with sums in

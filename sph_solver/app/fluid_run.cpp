@@ -200,6 +200,7 @@ struct RunStatistics {
   double max_density_error = 0.0;
   long long wall_returned_particles = 0;
   long long ppe_twin_failures = 0;  ///< steps whose pressure solve left the operator's twin
+  long long ppe_hierarchy_builds = 0;  ///< steps that built a preconditioner's hierarchy
   double particle_steps = 0.0;
   double simulated = 0.0;  ///< sum of the steps (more than the run's time when implicit windows repeat)
   std::map<std::string, long long> limiting;
@@ -214,6 +215,7 @@ struct RunStatistics {
     max_density_error = std::max(max_density_error, r.max_density_error);
     wall_returned_particles += r.wall_returned_particles;
     ppe_twin_failures += r.ppe_twin_failed ? 1 : 0;
+    ppe_hierarchy_builds += r.ppe_hierarchy_built ? 1 : 0;
     particle_steps += static_cast<double>(r.particles);
     ++limiting[limit];
   }
@@ -223,7 +225,8 @@ struct RunStatistics {
     nlohmann::json j{{"steps", steps}, {"max_dt", max_dt}, {"ppe_iterations", ppe_iterations},
                      {"max_ppe_iterations", max_ppe_iterations}, {"max_density_error", max_density_error},
                      {"wall_returned_particles", wall_returned_particles},
-                     {"ppe_twin_failures", ppe_twin_failures}, {"particle_steps", particle_steps},
+                     {"ppe_twin_failures", ppe_twin_failures}, {"ppe_hierarchy_builds", ppe_hierarchy_builds},
+                     {"particle_steps", particle_steps},
                      {"simulated", simulated}, {"limiting", limiting}};
     if (std::isfinite(min_dt)) j["min_dt"] = min_dt;
     return j;
@@ -238,6 +241,7 @@ struct RunStatistics {
     s.max_density_error = j.at("max_density_error").get<double>();
     s.wall_returned_particles = j.value("wall_returned_particles", 0LL);  // not in older checkpoints
     s.ppe_twin_failures = j.value("ppe_twin_failures", 0LL);              // nor this
+    s.ppe_hierarchy_builds = j.value("ppe_hierarchy_builds", s.steps);    // nor this (built every step then)
     s.particle_steps = j.at("particle_steps").get<double>();
     s.simulated = j.at("simulated").get<double>();
     s.limiting = j.at("limiting").get<std::map<std::string, long long>>();
@@ -455,6 +459,8 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
                                 {"max", stats.max_ppe_iterations}}},
             // Steps solved again with the operator's hierarchy (pressure_poisson.hpp).
             {"ppe_twin_failures", stats.ppe_twin_failures},
+            // Steps that built BoomerAMG's hierarchy: every step, unless it is kept (kept_hierarchy.hpp).
+            {"ppe_hierarchy_builds", stats.ppe_hierarchy_builds},
             {"max_density_error", stats.max_density_error},
             {"wall_returned_particles", stats.wall_returned_particles},  // wall_crossings.hpp
             {"overflow", {{"particles", solver.removed_count()}, {"volume_m3", solver.removed_volume()}}},

@@ -25,6 +25,9 @@ struct FluidModel {
   /// this many L0 (rescaled; pressure_poisson.hpp); 0: on the operator itself.
   /// The case file's default (fluid.ppe.preconditioner_radius).
   double preconditioner_radius = 1.8;
+  /// BoomerAMG's hierarchy is kept from step to step while it serves
+  /// (kept_hierarchy.hpp; fluid.ppe.keep_hierarchy).
+  bool keep_hierarchy = true;
   bool shifting = true;
   double shifting_coefficient = 2.0;  ///< A in D = A h |v|max dt (Lind et al. 2012)
   /// Pairs closer than this many L0 after the shift are parted (close_pairs.hpp);

@@ -467,10 +467,11 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   {
     auto scope = stage("ppe_solve");
     try {
-      const auto solved = ppe_.solve(n, mass, density, index, dirichlet, source, pressure);
+      const auto solved = ppe_.solve(n, mass, density, index, dirichlet, source, pressure, particles_.id);
       report.ppe_iterations = solved.iterations;
       report.ppe_residual = solved.residual_norm;
       report.ppe_twin_failed = solved.twin_failed;
+      report.ppe_hierarchy_built = solved.hierarchy_built;
     } catch (const std::runtime_error& e) {
       throw std::runtime_error(step_prefix(t) + e.what());
     }

@@ -63,6 +63,9 @@ struct StepReport {
   /// The pressure solve failed with BoomerAMG on the operator's twin and was
   /// solved with the operator's hierarchy (pressure_poisson.hpp).
   bool ppe_twin_failed = false;
+  /// The pressure solve built its preconditioner's hierarchy (always, unless
+  /// one is kept: fluid.ppe.keep_hierarchy).
+  bool ppe_hierarchy_built = false;
   long long free_surface_particles = 0;  ///< all ranks
   long long removed_particles = 0;       ///< this step, all ranks
   long long wall_returned_particles = 0; ///< this step, all ranks: put back in front of a wall (wall_crossings.hpp)
@@ -119,21 +122,28 @@ class FluidSolver {
     walls_.move(positions, velocities);
   }
   /// What an implicit coupling window rolls back to: this rank's particles and
-  /// the counters (the walls are moved again by the next step's coupling).
+  /// the counters (the walls are moved again by the next step's coupling),
+  /// and the pressure solver's kept hierarchy, so that a window taken again
+  /// from it is solved as the first time (none in a checkpoint file: a
+  /// restart builds a new one).
   struct Checkpoint {
     Particles particles;
     long long steps = 0;
     long long removed_count = 0;
     double removed_volume = 0.0;
+    PressurePoisson::KeptState pressure_solver;
   };
   void save(Checkpoint& checkpoint) const {
-    checkpoint = {particles_, steps_, removed_count_, removed_volume_};
+    checkpoint = {particles_, steps_, removed_count_, removed_volume_, ppe_.kept_state()};
   }
+  /// The pressure solver's kept hierarchy, for a checkpoint file.
+  [[nodiscard]] PressurePoisson::KeptState kept_pressure_hierarchy() const { return ppe_.kept_state(); }
   void restore(const Checkpoint& checkpoint) {
     particles_ = checkpoint.particles;
     steps_ = checkpoint.steps;
     removed_count_ = checkpoint.removed_count;
     removed_volume_ = checkpoint.removed_volume;
+    ppe_.resume(checkpoint.pressure_solver);
   }
 
   /// What a restart puts back (sph_solver/app/fluid_checkpoint.hpp): this

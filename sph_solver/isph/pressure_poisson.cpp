@@ -1,6 +1,7 @@
 #include "sph_solver/isph/pressure_poisson.hpp"
 
 #include "common/run/petsc_defaults.hpp"
+#include "common/run/petsc_handle.hpp"
 
 #include <cctype>
 #include <cstdio>
@@ -15,10 +16,6 @@ namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-void check(PetscErrorCode code, const char* what) {
-  if (code != 0) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")");
-}
-
 }  // namespace
 
 PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options) : comm_(comm) {
@@ -28,20 +25,20 @@ PressurePoisson::PressurePoisson(MPI_Comm comm, const std::string& case_options)
 
 void PressurePoisson::create_solver() {
   if (ksp_ != nullptr) KSPDestroy(&ksp_);
-  check(KSPCreate(comm_, &ksp_), "KSPCreate");
-  check(KSPSetOptionsPrefix(ksp_, "ppe_"), "KSPSetOptionsPrefix");
-  check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+  petsc_check(KSPCreate(comm_, &ksp_), "KSPCreate");
+  petsc_check(KSPSetOptionsPrefix(ksp_, "ppe_"), "KSPSetOptionsPrefix");
+  petsc_check(KSPSetType(ksp_, KSPCG), "KSPSetType");
   PC pc = nullptr;
-  check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCHYPRE), "PCSetType");
+  petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  petsc_check(PCSetType(pc, PCHYPRE), "PCSetType");
   // rtol 1e-6 (of the preconditioned right-hand side's norm, CG's default
   // test). Against 1e-8 (the default until 2026-12-04) the dam break's front
   // and kinetic energy agree to five digits until the impact,
   // with 6.8 instead of 9.9 iterations a step and 11-17 % less wall time
   // (cases/dam_break_2d/README.md).
-  check(KSPSetTolerances(ksp_, 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
-  check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
-  check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  petsc_check(KSPSetTolerances(ksp_, 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
+  petsc_check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  petsc_check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   // BoomerAMG builds a new hierarchy every step (the particles move), and that
   // set-up costs more than its V-cycles (cases/dam_break_2d/README.md): a
   // cheaper hierarchy — HMIS coarsening, ext+i interpolation of at most 4
@@ -49,16 +46,16 @@ void PressurePoisson::create_solver() {
   // twice the iterations and less time. Where the case or the command line
   // sets any of these, theirs holds.
   PCType type = nullptr;
-  check(PCGetType(pc, &type), "PCGetType");
+  petsc_check(PCGetType(pc, &type), "PCGetType");
   const char* hypre_type = nullptr;
-  if (type != nullptr && std::string(type) == PCHYPRE) check(PCHYPREGetType(pc, &hypre_type), "PCHYPREGetType");
+  if (type != nullptr && std::string(type) == PCHYPRE) petsc_check(PCHYPREGetType(pc, &hypre_type), "PCHYPREGetType");
   multigrid_ = hypre_type != nullptr && std::string(hypre_type) == "boomeramg";
   if (multigrid_) {
     tankfsi::apply_default_petsc_options(
         "-ppe_pc_hypre_boomeramg_coarsen_type HMIS -ppe_pc_hypre_boomeramg_interp_type ext+i "
         "-ppe_pc_hypre_boomeramg_P_max 4 -ppe_pc_hypre_boomeramg_strong_threshold 0.5 "
         "-ppe_pc_hypre_boomeramg_agg_nl 1");
-    check(PCSetFromOptions(pc), "PCSetFromOptions");
+    petsc_check(PCSetFromOptions(pc), "PCSetFromOptions");
   }
 }
 
@@ -76,7 +73,7 @@ std::string PressurePoisson::settings() const {
   std::fclose(memory);
   const std::string text(buffer, size);
   std::free(buffer);
-  check(code, "KSPView");
+  petsc_check(code, "KSPView");
   return text;
 }
 
@@ -89,8 +86,8 @@ PressurePoisson::~PressurePoisson() {
 PpeSolveReport PressurePoisson::solve(const Neighbourhood& n, std::span<const double> mass,
                                       std::span<const double> density, std::span<const std::int64_t> global_index,
                                       std::span<const unsigned char> dirichlet, std::span<const double> source,
-                                      std::span<double> pressure) {
-  assemble(n, mass, density, global_index, dirichlet);
+                                      std::span<double> pressure, std::span<const std::int64_t> particle_id) {
+  assemble(n, mass, density, global_index, dirichlet, particle_id);
   return solve_assembled(source, pressure);
 }
 
@@ -139,17 +136,18 @@ Mat PressurePoisson::create_matrix(Rows& rows) const {
   Mat matrix = nullptr;
   // PETSc takes the blocks as they are (no copy): the off-diagonal block's
   // columns are renumbered in place when the matrix is assembled.
-  check(MatCreateMPIAIJWithSplitArrays(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE,
+  petsc_check(MatCreateMPIAIJWithSplitArrays(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE,
                                        rows.diagonal.begin.data(), rows.diagonal.columns.data(),
                                        rows.diagonal.values.data(), rows.off_diagonal.begin.data(),
                                        rows.off_diagonal.columns.data(), rows.off_diagonal.values.data(), &matrix),
         "MatCreateMPIAIJWithSplitArrays");
-  check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  petsc_check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   return matrix;
 }
 
 void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
-                               std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet) {
+                               std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet,
+                               std::span<const std::int64_t> particle_id) {
   const int owned = n.owned;
   const PetscInt first_row = owned > 0 ? static_cast<PetscInt>(global_index[0]) : 0;
   const PetscInt end_row = first_row + owned;
@@ -245,11 +243,40 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   // builds its hierarchy anew every step either way.
   create_solver();
   solved_size_ = owned;
-  check(KSPSetOperators(ksp_, matrix_, preconditioning_matrix()), "KSPSetOperators");
+  keeping_ = multigrid_ && n.model.keep_hierarchy && !particle_id.empty();
+  first_solve_ = true;
+  if (keeping_) {
+    ids_.assign(particle_id.begin(), particle_id.begin() + owned);
+    use_kept_hierarchy(preconditioning_matrix(), kept_.rebuild);
+  } else {
+    petsc_check(KSPSetOperators(ksp_, matrix_, preconditioning_matrix()), "KSPSetOperators");
+  }
   // With the twin, convergence is judged on the operator's own residual: the
   // preconditioned residual of a twin that went singular can be small while
-  // the operator's is not (measured: a floating pair, tests/unit/sph).
-  if (twin_ != nullptr) check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  // the operator's is not (measured: a floating pair, tests/unit/sph). So it
+  // is with a kept hierarchy, built on another step's matrix.
+  if (twin_ != nullptr || keeping_) petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+}
+
+void PressurePoisson::use_kept_hierarchy(Mat basis, bool build) {
+  PetscVector layout;
+  petsc_check(MatCreateVecs(matrix_, layout.out(), nullptr), "MatCreateVecs");
+  KeptState& kept = kept_;
+  if (build || kept.hierarchy == nullptr || !kept.hierarchy->map_rows(ids_, layout.get())) {
+    // A new object: a state saved earlier keeps the one it solved with.
+    kept.hierarchy = std::make_shared<KeptHierarchy>(comm_, KeptHierarchy::basis_of(basis, ids_));
+    if (!kept.hierarchy->map_rows(ids_, layout.get()))
+      throw std::logic_error("PressurePoisson: a hierarchy does not take the rows it was built on");
+    kept.first_iterations = -1;
+    kept_fresh_ = true;
+  } else {
+    kept_fresh_ = false;
+  }
+  kept.rebuild = false;
+  petsc_check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+  PC pc = nullptr;
+  petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  kept.hierarchy->install(pc);
 }
 
 PressurePoisson::Attempt PressurePoisson::attempt(std::span<const double> source, std::span<double> pressure,
@@ -257,32 +284,32 @@ PressurePoisson::Attempt PressurePoisson::attempt(std::span<const double> source
   const int owned = solved_size_;
   Vec rhs = nullptr;
   Vec solution = nullptr;
-  check(MatCreateVecs(matrix_, &solution, &rhs), "MatCreateVecs");
+  petsc_check(MatCreateVecs(matrix_, &solution, &rhs), "MatCreateVecs");
   {
     PetscScalar* b = nullptr;
     PetscScalar* x = nullptr;
-    check(VecGetArray(rhs, &b), "VecGetArray");
-    check(VecGetArray(solution, &x), "VecGetArray");
+    petsc_check(VecGetArray(rhs, &b), "VecGetArray");
+    petsc_check(VecGetArray(solution, &x), "VecGetArray");
     for (int i = 0; i < owned; ++i) {
       const bool surface = dirichlet_[at(i)] != 0;
       b[i] = surface ? 0.0 : -source[at(i)];
       x[i] = surface ? 0.0 : pressure[at(i)];
     }
-    check(VecRestoreArray(rhs, &b), "VecRestoreArray");
-    check(VecRestoreArray(solution, &x), "VecRestoreArray");
+    petsc_check(VecRestoreArray(rhs, &b), "VecRestoreArray");
+    petsc_check(VecRestoreArray(solution, &x), "VecRestoreArray");
   }
   PetscReal rtol = 0.0;
   PetscReal atol = 0.0;
   PetscReal dtol = 0.0;
   PetscInt max_iterations = 0;
-  check(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_iterations), "KSPGetTolerances");
+  petsc_check(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &max_iterations), "KSPGetTolerances");
   const bool floored = residual_floor > atol;
-  if (floored) check(KSPSetTolerances(ksp_, rtol, residual_floor, dtol, max_iterations), "KSPSetTolerances");
+  if (floored) petsc_check(KSPSetTolerances(ksp_, rtol, residual_floor, dtol, max_iterations), "KSPSetTolerances");
   // Not handled: an error raised on some ranks only leaves the others inside
   // the solve's collectives (the job hangs); convergence failures are collective.
   Attempt result;
   result.code = KSPSolve(ksp_, rhs, solution);
-  if (floored) check(KSPSetTolerances(ksp_, rtol, atol, dtol, max_iterations), "KSPSetTolerances");
+  if (floored) petsc_check(KSPSetTolerances(ksp_, rtol, atol, dtol, max_iterations), "KSPSetTolerances");
   PetscInt iterations = 0;
   KSPGetConvergedReason(ksp_, &result.reason);
   KSPGetIterationNumber(ksp_, &iterations);
@@ -302,16 +329,31 @@ PressurePoisson::Attempt PressurePoisson::attempt(std::span<const double> source
 PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, std::span<double> pressure,
                                                 double residual_floor) {
   if (matrix_ == nullptr) throw std::logic_error("PressurePoisson::solve_assembled before assemble");
+  bool built = multigrid_ && (!keeping_ || kept_fresh_);
   Attempt result = attempt(source, pressure, residual_floor);
+  if (keeping_ && !kept_fresh_ && result.code == 0 && result.reason <= 0) {
+    // The kept hierarchy does not fit this operator: one built on it.
+    create_solver();
+    use_kept_hierarchy(preconditioning_matrix(), true);
+    petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    result = attempt(source, pressure, residual_floor);
+    built = true;
+  }
   bool twin_failed = false;
   if (result.code == 0 && result.reason <= 0 && twin_ != nullptr) {
     // The twin's hierarchy failed (pressure_poisson.hpp): the operator's takes
     // this solve and the step's others.
     MatDestroy(&twin_);
     create_solver();
-    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    if (keeping_) {
+      use_kept_hierarchy(matrix_, true);
+      petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    } else {
+      petsc_check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    }
     result = attempt(source, pressure, residual_floor);
     twin_failed = true;
+    built = true;
   }
   if (result.code != 0)
     throw std::runtime_error("pressure solver failed with PETSc error " + std::to_string(result.code));
@@ -320,6 +362,15 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
                              " after " + std::to_string(result.report.iterations) + " iterations, residual " +
                              std::to_string(result.report.residual_norm));
   result.report.twin_failed = twin_failed;
+  result.report.hierarchy_built = built && first_solve_;
+  if (keeping_ && first_solve_) {
+    // A kept hierarchy is built anew for the next operator once it takes more
+    // than kept_iteration_ratio times the iterations of its first solve.
+    const int iterations = result.report.iterations;
+    if (kept_.first_iterations < 0) kept_.first_iterations = iterations;
+    else if (iterations > kept_iteration_ratio * kept_.first_iterations) kept_.rebuild = true;
+  }
+  first_solve_ = false;
   return result.report;
 }
 

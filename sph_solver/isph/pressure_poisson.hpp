@@ -36,23 +36,40 @@
 // on the operator's own residual; and a solve that fails with the twin's
 // hierarchy is solved again from the same start with the operator's, which
 // the step reports.
+//
+// With FluidModel::keep_hierarchy and the particles' ids, the hierarchy is
+// kept from step to step (kept_hierarchy.hpp) and built anew on the step's
+// matrix (the twin, as above) when a solve took more than
+// kept_iteration_ratio times the iterations of the first solve on it, when
+// it fails, or when a particle is not among its rows.
 #include <mpi.h>
 #include <petscksp.h>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "sph_solver/isph/kept_hierarchy.hpp"
 #include "sph_solver/isph/particle_terms.hpp"
 
 namespace tankfsi::sph {
+
+/// When a kept hierarchy is built anew (above). A new one costs about as much
+/// as ten V-cycles. Measured on the dam break at L0 = 0.01 m (2 ranks, 0.6 s,
+/// 407 steps): a hierarchy built every step, 12.7 iterations a step; kept
+/// with the ratio 1.25, 14.0; 1.5, 15.4 and 13 builds; 2, 18.3 and 8 builds
+/// (1.25 and 1.5 the fastest, alike within the machine's spread).
+inline constexpr double kept_iteration_ratio = 1.5;
 
 struct PpeSolveReport {
   int iterations = 0;          ///< of the solve that converged
   double residual_norm = 0.0;  ///< the KSP's final residual norm
   /// The solve failed with the twin's hierarchy and the operator's solved it (below).
   bool twin_failed = false;
+  /// A hierarchy was built for it (always, unless one is kept: kept_hierarchy.hpp).
+  bool hierarchy_built = false;
 };
 
 /// One off-diagonal entry of a PPE row while it is assembled.
@@ -74,10 +91,14 @@ class PressurePoisson {
   /// Solves for the owned particles' pressure; `pressure` holds the warm start on
   /// entry (owned rows). `global_index`, `density`, `mass`, `dirichlet` cover owned
   /// and ghost particles; `source` the owned ones (S_i with the wall share already
-  /// subtracted). Throws std::runtime_error when the solver does not converge.
+  /// subtracted); `particle_id` the owned particles' ids, with which the
+  /// preconditioner's hierarchy is kept across steps when the model says so
+  /// (none: built for this solve). Throws std::runtime_error when the solver
+  /// does not converge.
   PpeSolveReport solve(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
                        std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet,
-                       std::span<const double> source, std::span<double> pressure);
+                       std::span<const double> source, std::span<double> pressure,
+                       std::span<const std::int64_t> particle_id = {});
 
   /// solve() in two parts, for many right-hand sides of one operator (the
   /// preconditioner is set up once): assemble the matrix of these particles,
@@ -87,9 +108,21 @@ class PressurePoisson {
   /// solve, if above the options' own): for a part of a pressure already
   /// solved to that residual as a whole.
   void assemble(const Neighbourhood& n, std::span<const double> mass, std::span<const double> density,
-                std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet);
+                std::span<const std::int64_t> global_index, std::span<const unsigned char> dirichlet,
+                std::span<const std::int64_t> particle_id = {});
   PpeSolveReport solve_assembled(std::span<const double> source, std::span<double> pressure,
                                  double residual_floor = 0.0);
+
+  /// The kept hierarchy and when to build the next (nothing while none is
+  /// kept): what a state saved in memory and put back later solves with, so
+  /// that a step taken again gives the same answer (FluidSolver::save()).
+  struct KeptState {
+    std::shared_ptr<KeptHierarchy> hierarchy;
+    int first_iterations = -1;  ///< of the first solve on it (-1: none yet)
+    bool rebuild = true;        ///< the next operator gets a new one
+  };
+  [[nodiscard]] KeptState kept_state() const { return kept_; }
+  void resume(const KeptState& state) { kept_ = state; }
 
   /// The solver and preconditioner with their settings, as PETSc's KSPView
   /// shows them (collective; the text on the first rank, empty on the others).
@@ -136,6 +169,9 @@ class PressurePoisson {
     PpeSolveReport report;
   };
   [[nodiscard]] Attempt attempt(std::span<const double> source, std::span<double> pressure, double residual_floor);
+  /// Makes the kept hierarchy the solver's preconditioner, a new one built on
+  /// `basis` when `build` or when the kept one cannot take this step's rows.
+  void use_kept_hierarchy(Mat basis, bool build);
   MPI_Comm comm_;
   KSP ksp_ = nullptr;
   bool multigrid_ = false;  ///< BoomerAMG, whose hierarchy may be built on a twin
@@ -143,6 +179,11 @@ class PressurePoisson {
   Mat matrix_ = nullptr;    ///< the last assembled operator
   Mat twin_ = nullptr;      ///< its sparser twin for the preconditioner (or none)
   std::vector<unsigned char> dirichlet_;  ///< its Dirichlet rows (owned)
+  bool keeping_ = false;           ///< it is solved with the kept hierarchy
+  bool kept_fresh_ = false;        ///< which was built on it
+  bool first_solve_ = false;       ///< no solve of it yet
+  std::vector<std::int64_t> ids_;  ///< its rows' particles
+  KeptState kept_;
   Rows operator_rows_;
   Rows twin_rows_;
   std::vector<RowEntry> entries_;  ///< one row's off-diagonal entries

@@ -12,8 +12,9 @@
 #include <vector>
 
 #include "fem_solver/analysis/newmark.hpp"
-#include "fem_solver/assembly/petsc_handle.hpp"
+#include "common/run/petsc_handle.hpp"
 
+using namespace tankfsi;
 using namespace tankfsi::fem;
 
 namespace {

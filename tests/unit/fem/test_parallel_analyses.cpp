@@ -17,6 +17,7 @@
 #include "patch_meshes.hpp"
 #include "support/petsc_options_scope.hpp"
 
+using namespace tankfsi;
 using namespace tankfsi::fem;
 
 namespace {

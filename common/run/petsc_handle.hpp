@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-namespace tankfsi::fem {
+namespace tankfsi {
 
 inline void petsc_check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")");
@@ -50,5 +50,6 @@ using PetscMatrix = PetscHandle<Mat, MatDestroy>;
 using PetscVector = PetscHandle<Vec, VecDestroy>;
 using PetscSolver = PetscHandle<KSP, KSPDestroy>;
 using PetscScatter = PetscHandle<VecScatter, VecScatterDestroy>;
+using PetscIndexSet = PetscHandle<IS, ISDestroy>;
 
-}  // namespace tankfsi::fem
+}  // namespace tankfsi
