@@ -39,8 +39,9 @@ void PressurePoisson::create_solver() {
   petsc_check(KSPSetTolerances(ksp_, 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
   petsc_check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   petsc_check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
-  // BoomerAMG builds a new hierarchy every step (the particles move), and that
-  // set-up costs more than its V-cycles (cases/dam_break_2d/README.md): a
+  // BoomerAMG's hierarchy is built anew for the particles' new places (every
+  // step, or when a kept one no longer serves), and that set-up costs more
+  // than its V-cycles (cases/dam_break_2d/README.md): a
   // cheaper hierarchy — HMIS coarsening, ext+i interpolation of at most 4
   // entries a row, strong threshold 0.5, one aggressive level — takes about
   // twice the iterations and less time. Where the case or the command line
@@ -137,10 +138,11 @@ Mat PressurePoisson::create_matrix(Rows& rows) const {
   // PETSc takes the blocks as they are (no copy): the off-diagonal block's
   // columns are renumbered in place when the matrix is assembled.
   petsc_check(MatCreateMPIAIJWithSplitArrays(comm_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE,
-                                       rows.diagonal.begin.data(), rows.diagonal.columns.data(),
-                                       rows.diagonal.values.data(), rows.off_diagonal.begin.data(),
-                                       rows.off_diagonal.columns.data(), rows.off_diagonal.values.data(), &matrix),
-        "MatCreateMPIAIJWithSplitArrays");
+                                             rows.diagonal.begin.data(), rows.diagonal.columns.data(),
+                                             rows.diagonal.values.data(), rows.off_diagonal.begin.data(),
+                                             rows.off_diagonal.columns.data(), rows.off_diagonal.values.data(),
+                                             &matrix),
+              "MatCreateMPIAIJWithSplitArrays");
   petsc_check(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   return matrix;
 }
@@ -239,8 +241,9 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   // another size (particles migrate and leave): a new solver takes it, with
   // the same options. A KSP refuses a new local size without a reset, and
   // GAMG, reset or not, kept coarse levels sized for the old pattern ("Cannot
-  // change local size of Amat after use", on some ranks only). BoomerAMG
-  // builds its hierarchy anew every step either way.
+  // change local size of Amat after use", on some ranks only). BoomerAMG's
+  // hierarchy is built anew every step either way, or kept apart from the
+  // solver (kept_hierarchy.hpp).
   create_solver();
   solved_size_ = owned;
   keeping_ = multigrid_ && n.model.keep_hierarchy && !particle_id.empty();
