@@ -124,8 +124,8 @@ class FluidSolver {
   /// What an implicit coupling window rolls back to: this rank's particles and
   /// the counters (the walls are moved again by the next step's coupling),
   /// and the pressure solver's kept hierarchy, so that a window taken again
-  /// from it is solved as the first time (none in a checkpoint file: a
-  /// restart builds a new one).
+  /// from it is solved as the first time (a checkpoint file holds the rows it
+  /// was built on: sph_solver/app/fluid_checkpoint.hpp).
   struct Checkpoint {
     Particles particles;
     long long steps = 0;
