@@ -244,24 +244,24 @@ void PressurePoisson::assemble(const Neighbourhood& n, std::span<const double> m
   // change local size of Amat after use", on some ranks only). BoomerAMG's
   // hierarchy is built anew every step either way, or kept apart from the
   // solver (kept_hierarchy.hpp).
-  create_solver();
   solved_size_ = owned;
   keeping_ = multigrid_ && n.model.keep_hierarchy && !particle_id.empty();
   first_solve_ = true;
   if (keeping_) {
     ids_.assign(particle_id.begin(), particle_id.begin() + owned);
     use_kept_hierarchy(preconditioning_matrix(), kept_.rebuild);
-  } else {
-    petsc_check(KSPSetOperators(ksp_, matrix_, preconditioning_matrix()), "KSPSetOperators");
+    return;
   }
+  create_solver();
+  petsc_check(KSPSetOperators(ksp_, matrix_, preconditioning_matrix()), "KSPSetOperators");
   // With the twin, convergence is judged on the operator's own residual: the
   // preconditioned residual of a twin that went singular can be small while
-  // the operator's is not (measured: a floating pair, tests/unit/sph). So it
-  // is with a kept hierarchy, built on another step's matrix.
-  if (twin_ != nullptr || keeping_) petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  // the operator's is not (measured: a floating pair, tests/unit/sph).
+  if (twin_ != nullptr) petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
 }
 
 void PressurePoisson::use_kept_hierarchy(Mat basis, bool build) {
+  create_solver();
   PetscVector layout;
   petsc_check(MatCreateVecs(matrix_, layout.out(), nullptr), "MatCreateVecs");
   KeptState& kept = kept_;
@@ -280,6 +280,9 @@ void PressurePoisson::use_kept_hierarchy(Mat basis, bool build) {
   PC pc = nullptr;
   petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
   kept.hierarchy->install(pc);
+  // Judged on the operator's own residual, as with the twin (assemble()): the
+  // hierarchy was built on another step's matrix.
+  petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
 }
 
 PressurePoisson::Attempt PressurePoisson::attempt(std::span<const double> source, std::span<double> pressure,
@@ -336,9 +339,7 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
   Attempt result = attempt(source, pressure, residual_floor);
   if (keeping_ && !kept_fresh_ && result.code == 0 && result.reason <= 0) {
     // The kept hierarchy does not fit this operator: one built on it.
-    create_solver();
     use_kept_hierarchy(preconditioning_matrix(), true);
-    petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
     result = attempt(source, pressure, residual_floor);
     built = true;
   }
@@ -347,11 +348,10 @@ PpeSolveReport PressurePoisson::solve_assembled(std::span<const double> source, 
     // The twin's hierarchy failed (pressure_poisson.hpp): the operator's takes
     // this solve and the step's others.
     MatDestroy(&twin_);
-    create_solver();
     if (keeping_) {
       use_kept_hierarchy(matrix_, true);
-      petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
     } else {
+      create_solver();
       petsc_check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
     }
     result = attempt(source, pressure, residual_floor);

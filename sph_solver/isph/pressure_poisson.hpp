@@ -169,8 +169,9 @@ class PressurePoisson {
     PpeSolveReport report;
   };
   [[nodiscard]] Attempt attempt(std::span<const double> source, std::span<double> pressure, double residual_floor);
-  /// Makes the kept hierarchy the solver's preconditioner, a new one built on
-  /// `basis` when `build` or when the kept one cannot take this step's rows.
+  /// A new solver for the operator with the kept hierarchy as its
+  /// preconditioner, a new one built on `basis` when `build` or when the kept
+  /// one cannot take this step's rows.
   void use_kept_hierarchy(Mat basis, bool build);
   MPI_Comm comm_;
   KSP ksp_ = nullptr;

@@ -141,7 +141,7 @@ TEST_CASE("a kept hierarchy follows its particles to other rows and ranks", "[is
   PCDestroy(&shell);
 
   // Each particle gets what the hierarchy gave it in its own row: the same
-  // V-cycle on the same numbers (measured: equal to the last bit).
+  // V-cycle on the same numbers (measured: equal to the last bit on 1-4 ranks).
   double largest = 0.0, difference = 0.0;
   {
     const PetscScalar* values = nullptr;
