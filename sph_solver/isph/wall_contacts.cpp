@@ -212,13 +212,6 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   result.octant_offsets.reserve(positions.size() + 1);
   const double blend_band = wall_foot_blend_band * walls.table().spacing();
   std::vector<WallHit> hits;
-  std::vector<WallHit> sorted;
-  struct HitKey {
-    double squared_distance;
-    int triangle;
-    int hit;
-  };
-  std::vector<HitKey> order;
   std::vector<std::pair<Eigen::Vector3d, double>> planes;
   std::vector<char> from_behind;
   std::vector<WallSeen> walls_seen;
@@ -241,18 +234,10 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
           hits.push_back(WallHit{candidate.triangle, *closest});
       }
     }
-    // Nearest first, ties by triangle: sorted as small keys, the hits (72 bytes
-    // each) then moved once.
-    order.clear();
-    for (std::size_t k = 0; k < hits.size(); ++k)
-      order.push_back(HitKey{hits[k].closest.squared_distance, hits[k].triangle, static_cast<int>(k)});
-    std::sort(order.begin(), order.end(), [](const HitKey& a, const HitKey& b) {
-      return a.squared_distance < b.squared_distance ||
-             (a.squared_distance == b.squared_distance && a.triangle < b.triangle);
+    std::sort(hits.begin(), hits.end(), [](const WallHit& a, const WallHit& b) {
+      return a.closest.squared_distance < b.closest.squared_distance ||
+             (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);
     });
-    sorted.clear();
-    for (const HitKey& key : order) sorted.push_back(hits[at(key.hit)]);
-    hits.swap(sorted);
     // Each hit's plane normal (zero: not a wall of the plane) and the particle's height over it.
     // A two-sided triangle seen from behind, the particle right behind it (not
     // beside it: its sheet's free edge, or the rest of the sheet), turns round.
