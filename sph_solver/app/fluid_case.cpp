@@ -245,10 +245,10 @@ FluidCase read_fluid_case(const CaseConfig& config) {
   fill.hydrostatic_pressure = config.boolean("fluid.fill.hydrostatic");
   fill.gravity = c.model.gravity;
   if (config.has("fluid.fill.region")) fill.region = box_from(config, "fluid.fill.region");
-  // Rings that follow the wall (filling.hpp), inside the apothem of its polygon.
+  // Rings that follow the wall (filling.hpp): the smooth cylinder its facets
+  // approximate, as the wall contacts see it (wall_contacts.hpp).
   if (config.text("fluid.geometry.type") == "cylindrical_tank")
-    fill.cylinder_radius =
-        config.real("fluid.geometry.radius") * std::cos(std::numbers::pi / cylinder_segments(config, c.model));
+    fill.cylinder_radius = config.real("fluid.geometry.radius");
   try {
     c.particles = fill_tank(c.walls, fill);
   } catch (const std::invalid_argument& e) {

@@ -15,8 +15,6 @@
 namespace tankfsi::sph {
 namespace {
 
-/// Normals closer than this (cos of ~37°) belong to the same wall.
-constexpr double same_wall_cosine = 0.8;
 /// Curvature the kernel resolves: |H| × support below this.
 constexpr double resolvable_curvature = 0.5;
 
@@ -82,7 +80,7 @@ void WallModel::update_curvature() {
   compute_vertex_mean_curvature(*mesh_, curvature_);
   for (double& h : curvature_)
     if (!(std::abs(h) * support_radius_ <= resolvable_curvature)) h = std::numeric_limits<double>::quiet_NaN();
-  corner_values_.update(*mesh_, curvature_, same_wall_cosine);
+  corner_values_.update(*mesh_, curvature_);
 }
 
 WallCandidates find_wall_candidates(const WallModel& walls, std::span<const Eigen::Vector3d> positions,
@@ -180,6 +178,7 @@ WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& 
   }
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   double curvature = 0.0;
+  double depth = 0.0;  // of the smooth wall behind the facets' planes
   for (int f = 0; f < contact.foot_count; ++f) {
     WallFoot& foot = contact.feet[at(f)];
     foot.weight /= total;
@@ -188,9 +187,10 @@ WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& 
     // Seen from behind, a wall that bulges towards the front is hollow.
     const double sign = from_behind[wall.hits[at(f)]] ? -1.0 : 1.0;
     curvature += sign * foot.weight * walls.corner_values().curvature_at(foot.triangle, foot.barycentric);
+    depth += sign * foot.weight * walls.corner_values().smooth_depth(walls.mesh(), foot.triangle, foot.barycentric);
   }
   contact.normal = contact.foot_count == 1 ? wall.normal : normal.normalized();
-  contact.distance = wall.height <= 0.0 ? 0.0 : nearest;
+  contact.distance = wall.height <= 0.0 ? 0.0 : std::max(0.0, nearest + depth);
   contact.values = curved(walls.table().at(contact.distance), curvature);
   contact.velocity = at_contact(walls.mesh(), walls.vertex_velocities(), contact);
   return contact;

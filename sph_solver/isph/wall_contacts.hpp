@@ -17,9 +17,15 @@
 // are not corrected.
 //
 // Distance (eq 15): the true point-triangle distance to the nearest triangle of the
-// wall; the normal that of the smooth wall the facets approximate, interpolated at
-// the closest point from the triangle's corner normals (wall_corner_values.hpp: a
-// flat wall keeps its plane's normal exactly). Which wall a triangle belongs to and
+// wall, plus how far the smooth wall the facets approximate lies behind it there
+// (WallCornerValues::smooth_depth: the sagitta of a faceted cylinder, 0 on a flat
+// wall); the normal that smooth wall's, interpolated at the closest point from the
+// triangle's corner normals (wall_corner_values.hpp: a flat wall keeps its plane's
+// normal exactly). Measured by the facets alone, a cylinder of 32 facets (2 L0
+// wide) completed its outer rings' kernel sums to -2.1 % at the vertices and held
+// its liquid inside the polygon; the wall's distance and normal then belonged to
+// different walls, and the liquid next to it kept 3-4 times the speeds of the
+// rest (cases/hydrostatic_3d/README.md). Which wall a triangle belongs to and
 // which side of it the particle is on go by the triangle's own plane. A particle
 // that has crossed a wall by less than L0/2 is treated as touching it (distance 0),
 // so the strongest wall terms push it back; one further behind is not in contact

@@ -13,14 +13,18 @@
 
 #include "sph_solver/walls/closest_point.hpp"
 #include "sph_solver/walls/triangle_index.hpp"
+#include "sph_solver/walls/wall_corner_values.hpp"
 
 namespace tankfsi::sph {
 
 namespace {
 
 // Clearance tolerance, relative to L₀: far above the round-off of lattice coordinates
-// (~1e-16 of the tank size), far below any geometric feature.
-constexpr double clearance_tolerance = 1e-6;
+// (~1e-16 of the tank size) and the smooth wall's second-order error at a facet's
+// middle (its depth there is (R² - r²)/(2R), short of R - r by sagitta²/(2R): 1.2e-4 L₀
+// for a cylinder of 32 facets at R = 10 L₀, 1.2e-3 L₀ for the generator's fewest, 12
+// facets, at R = 2 L₀), far below any geometric feature.
+constexpr double clearance_tolerance = 2e-3;
 // A 2D wall face has a unit normal with |n_z| at most this; front and back faces have 1.
 constexpr double max_in_plane_normal_z = 1e-6;
 
@@ -62,10 +66,27 @@ bool in_region(const Eigen::Vector3d& x, const std::optional<Eigen::AlignedBox3d
   return true;
 }
 
-bool passes(const TriangleIndex& index, const TriangleMesh& mesh, const FillSpec& spec, const Eigen::Vector3d& x) {
+/// The walls as the particles see them: the nearest triangle and the smooth wall
+/// behind it (wall_corner_values.hpp), which the clearance is measured to.
+struct FillWalls {
+  const TriangleMesh& mesh;
+  TriangleIndex index{mesh};
+  WallCornerValues corners{mesh};
+
+  explicit FillWalls(const TriangleMesh& m) : mesh(m) {
+    // Normals only: the curvature is not needed here.
+    const std::vector<double> no_curvature(mesh.vertex_count(), std::numeric_limits<double>::quiet_NaN());
+    corners.update(mesh, no_curvature);
+  }
+};
+
+bool passes(const FillWalls& walls, const FillSpec& spec, const Eigen::Vector3d& x) {
   if (!(x[spec.dimension - 1] < spec.fill_level) || !in_region(x, spec.region, spec.dimension)) return false;
-  const auto hit = index.nearest(x, std::numeric_limits<double>::infinity());
-  return hit && signed_distance(x, mesh, hit->triangle, hit->closest) >= (0.5 - clearance_tolerance) * spec.spacing;
+  const auto hit = walls.index.nearest(x, std::numeric_limits<double>::infinity());
+  if (!hit) return false;
+  const double distance = signed_distance(x, walls.mesh, hit->triangle, hit->closest) +
+                          walls.corners.smooth_depth(walls.mesh, hit->triangle, hit->closest.barycentric);
+  return distance >= (0.5 - clearance_tolerance) * spec.spacing;
 }
 
 // Lattice points that pass the level, region and clearance tests, in lattice order.
@@ -73,7 +94,7 @@ std::vector<Eigen::Vector3d> lattice_points(const TriangleMesh& mesh, const Fill
   const int dims = spec.dimension;
   const int up = dims - 1;
   const double h = spec.spacing;
-  const TriangleIndex index(mesh);
+  const FillWalls walls(mesh);
   const Eigen::AlignedBox3d walls_box = mesh.bounding_box();
   const Eigen::Vector3d origin = spec.lattice_origin.value_or(walls_box.min());
   Eigen::AlignedBox3d search = walls_box;
@@ -94,7 +115,7 @@ std::vector<Eigen::Vector3d> lattice_points(const TriangleMesh& mesh, const Fill
     for (int j = range[1].first; j <= range[1].second; ++j)
       for (int i = range[0].first; i <= range[0].second; ++i) {
         const Eigen::Vector3d x(coordinate(0, i), coordinate(1, j), coordinate(2, k));
-        if (passes(index, mesh, spec, x)) points.push_back(x);
+        if (passes(walls, spec, x)) points.push_back(x);
       }
   return points;
 }
@@ -108,7 +129,7 @@ struct FilledPoints {
 FilledPoints ring_points(const TriangleMesh& mesh, const FillSpec& spec) {
   const double h = spec.spacing;
   const double radius = *spec.cylinder_radius;
-  const TriangleIndex index(mesh);
+  const FillWalls walls(mesh);
   const double floor = spec.lattice_origin ? spec.lattice_origin->z() : mesh.bounding_box().min().z();
   FilledPoints out;
   for (int k = 0; floor + (k + 0.5) * h < spec.fill_level; ++k) {
@@ -122,7 +143,7 @@ FilledPoints ring_points(const TriangleMesh& mesh, const FillSpec& spec) {
       for (int i = 0; i < n; ++i) {
         const double phi = 2.0 * std::numbers::pi * (i + turn) / n;
         const Eigen::Vector3d x(n == 1 ? 0.0 : r * std::cos(phi), n == 1 ? 0.0 : r * std::sin(phi), z);
-        if (!passes(index, mesh, spec, x)) continue;
+        if (!passes(walls, spec, x)) continue;
         out.points.push_back(x);
         out.volumes.push_back(area / n * h);
       }

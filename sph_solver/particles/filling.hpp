@@ -6,9 +6,11 @@
 //
 // A lattice point x = origin + (i + 1/2, j + 1/2, k + 1/2) L₀ becomes a particle when
 //  - the signed distance of the walls at x (TriangleIndex nearest triangle, sign by the
-//    pseudo-normal: positive on the fluid side) is >= L₀/2 - 1e-6 L₀, i.e. x is inside
-//    and at least half a spacing from every wall (the tolerance absorbs the round-off of
-//    points exactly L₀/2 from a flat wall);
+//    pseudo-normal: positive on the fluid side; to the smooth wall behind it where the
+//    facets approximate a curved one, WallCornerValues::smooth_depth, as the wall
+//    contacts measure it) is >= L₀/2 - 2e-3 L₀, i.e. x is inside and at least half a
+//    spacing from every wall (the tolerance absorbs the round-off of points exactly
+//    L₀/2 from a flat wall and the smooth wall's second-order error, filling.cpp);
 //  - its height (y in 2D, z in 3D) is below the fill level (strictly): the particles
 //    whose cells are centred below the free surface, so the filled depth is the level
 //    rounded to a whole number of layers;
@@ -26,7 +28,8 @@
 // between its outer particles and a curved wall, into which the liquid falls at the
 // start (measured: the wall force drops to half the weight in 0.02 s). Rings follow
 // the wall instead: layer k at z = (k + 1/2) L₀, ring m at radius
-// r_m = R - (m + 1/2) L₀ (m = 0, 1, ... while r_m > 0) with n_m = max(1, round(2π r_m / L₀))
+// r_m = R - (m + 1/2) L₀ (m = 0, 1, ... while r_m > 0; R the radius of the smooth
+// cylinder the wall's facets approximate) with n_m = max(1, round(2π r_m / L₀))
 // particles, every other ring turned by half a pitch; each particle's volume is its
 // share of its annulus, 2π r_m L₀ / n_m times L₀ (the innermost: the disc of radius
 // r_m + L₀/2 over n_m), so the masses sum to ρ π R² times the filled depth exactly.
@@ -54,7 +57,8 @@ struct FillSpec {
   std::optional<Eigen::AlignedBox3d> region;         ///< keep only particles inside (2D: x and y)
   std::optional<Eigen::Vector3d> lattice_origin;      ///< default: the walls' bounding-box minimum
   /// 3D upright cylinder about the z axis: rings instead of the cubic lattice
-  /// (see below), inside this radius (the apothem of the wall's polygon).
+  /// (see below), inside this radius (the smooth cylinder the wall's facets
+  /// approximate, as the wall contacts measure it).
   std::optional<double> cylinder_radius;
   bool hydrostatic_pressure = false;                  ///< else zero pressure
   double gravity = 9.81;                              ///< |g| for the hydrostatic pressure

@@ -31,8 +31,7 @@ WallCornerValues::WallCornerValues(const TriangleMesh& mesh) {
   wall_curvature_.resize(mesh.vertex_count());
 }
 
-void WallCornerValues::update(const TriangleMesh& mesh, std::span<const double> vertex_curvature,
-                              double same_wall_cosine) {
+void WallCornerValues::update(const TriangleMesh& mesh, std::span<const double> vertex_curvature) {
   const auto& triangles = mesh.triangles();
   const auto& face_normals = mesh.face_normals();
   // A vertex where triangles of different walls meet lies on an edge or corner of
@@ -75,6 +74,16 @@ void WallCornerValues::update(const TriangleMesh& mesh, std::span<const double> 
           std::isfinite(h) ? h : (resolvable_neighbours > 0 ? neighbour_curvature / resolvable_neighbours : 0.0);
     }
   }
+}
+
+double WallCornerValues::smooth_depth(const TriangleMesh& mesh, int t, const Eigen::Vector3d& w) const {
+  const auto& n = normals_[at(t)];
+  double depth = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    depth -= 0.5 * w[i] * w[j] * (n[at(j)] - n[at(i)]).dot(mesh.corner(t, j) - mesh.corner(t, i));
+  }
+  return depth;
 }
 
 }  // namespace tankfsi::sph

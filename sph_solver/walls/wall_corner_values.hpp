@@ -12,7 +12,7 @@
 // each triangle takes the values of its own wall there.
 //
 // Walls: two triangles sharing a vertex belong to the same wall there when their
-// normals are closer than same_wall_cosine (the contacts' rule, wall_contacts.hpp).
+// normals are closer than same_wall_cosine (below; the contacts' rule, wall_contacts.hpp).
 // Corner normal of triangle t at vertex v: the angle-weighted mean of the normals of
 // the triangles around v on t's wall (Thuermer & Wuethrich 1998), exactly t's own
 // normal where they agree to round-off (a flat wall stays exactly flat). Corner
@@ -33,6 +33,10 @@
 
 namespace tankfsi::sph {
 
+/// Normals closer than this (cos of ~37°) belong to the same wall: the rule of the
+/// corner values here, of the wall contacts and of the filling's clearance.
+inline constexpr double same_wall_cosine = 0.8;
+
 class WallCornerValues {
  public:
   /// The topology of `mesh` (its triangles around each vertex); no values yet.
@@ -40,12 +44,18 @@ class WallCornerValues {
 
   /// The values for the mesh's current positions (the topology given at
   /// construction). `vertex_curvature`: per vertex, NaN where the kernel does not
-  /// resolve it (a sharp edge or corner). `same_wall_cosine`: the cosine below
-  /// which two triangles are different walls.
-  void update(const TriangleMesh& mesh, std::span<const double> vertex_curvature, double same_wall_cosine);
+  /// resolve it (a sharp edge or corner).
+  void update(const TriangleMesh& mesh, std::span<const double> vertex_curvature);
 
   /// Unit normals of triangle t's wall at its corners.
   [[nodiscard]] const std::array<Eigen::Vector3d, 3>& normals(int t) const { return normals_[at(t)]; }
+  /// How far the smooth wall lies behind triangle t's plane at barycentric weights
+  /// w (m; negative where it bulges out of the plane towards the fluid): the
+  /// quadratic through the corners whose normal curvature along each edge the
+  /// corner normals give, depth = -1/2 sum_{i<j} w_i w_j (n_j - n_i).(x_j - x_i).
+  /// On a sphere or cylinder of radius R whose vertices lie on it this is
+  /// (R^2 - |x|^2) / (2R), the sagitta, to second order; 0 on a flat wall.
+  [[nodiscard]] double smooth_depth(const TriangleMesh& mesh, int t, const Eigen::Vector3d& w) const;
   /// Mean curvature of triangle t's wall at barycentric weights w (1/m).
   [[nodiscard]] double curvature_at(int t, const Eigen::Vector3d& w) const {
     const auto& h = curvature_[at(t)];

@@ -59,8 +59,8 @@ inline FluidModel oil_3d() {
 
 /// cases/hydrostatic_3d's tank and liquid: oil 0.5 m deep in an upright cylinder of
 /// R = 0.5 m, 0.6 m high, with 32 wall facets (2 pi R / 2 L0, as the case's
-/// generator) and a dome roof of radius 1 m, filled on rings inside the facets'
-/// apothem with the hydrostatic pressure.
+/// generator) and a dome roof of radius 1 m, filled on rings inside the smooth
+/// cylinder the facets approximate, with the hydrostatic pressure.
 struct OilCylinder {
   static constexpr double radius = 0.5;
   static constexpr double depth = 0.5;
@@ -80,7 +80,7 @@ struct OilCylinder {
     spec.dimension = 3;
     spec.hydrostatic_pressure = true;
     spec.gravity = model.gravity;
-    spec.cylinder_radius = radius * std::cos(std::numbers::pi / segments);
+    spec.cylinder_radius = radius;  // the smooth wall the facets approximate
     return fill_tank(walls, spec);
   }();
 };

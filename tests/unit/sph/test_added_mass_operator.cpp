@@ -197,16 +197,16 @@ TEST_CASE("the added-mass operator of a cylindrical tank's wall matches potentia
   MPI_Allreduce(MPI_IN_PLACE, matrix.data(), static_cast<int>(matrix.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   double total = 0.0;
   for (const double a : matrix) total += a;
-  // The liquid's surface: the top of its highest layer, z = 0.5 m; the wall's
-  // polygon, apothem 0.4976 m (the potential flow's mass 0.2 % lower than at R).
+  // The liquid's surface: the top of its highest layer, z = 0.5 m; the wall: the
+  // smooth cylinder of radius R its facets approximate (wall_contacts.hpp).
   const double expected = potential_flow_breathing_mass(tank.model.density, radius, depth);
   CAPTURE(total, expected);
-  // Measured 559.5 kg against 588.4 (-4.9 %; the coarse tank of
-  // cases/tank3d_fixed_roof_coarse, 15 particles per radius: -5.6 %), the
-  // discretisation's error at 10 particles per radius and depth (2D side wall at
-  // 20 per depth: -0.1 %, above). While the free surface took the wall's
-  // kernel-sum deficits (0.5-2 % at the facets' vertices) for air deep in the
-  // liquid: 398.7 kg (-32 %; the coarse tank -47 %). 8 % holds the first with
-  // margin and fails the second and any lost wall share or free surface.
-  CHECK(total == Approx(expected).epsilon(0.08));
+  // Measured 591.3 kg against 588.4 (+0.5 %) at 10 particles per radius and depth
+  // (2D side wall at 20 per depth: -0.1 %, above). With the wall's distance
+  // measured to the facets and the rings inside the polygon's apothem: 559.5 kg
+  // (-4.9 %); with the smooth wall's distance but those rings (a gap of the
+  // sagitta all round): 515.4 kg (-12.4 %); while the free surface took the
+  // facets' kernel-sum deficits (2 % at their vertices) for air deep in the liquid:
+  // 398.7 kg (-32 %). 3 % holds the first with margin and fails all the others.
+  CHECK(total == Approx(expected).epsilon(0.03));
 }

@@ -147,7 +147,7 @@ TEST_CASE("filling: a dam-break column of 1 × 2 m at 0.02 m is 50 × 100 partic
   check_clearance(tank, p, spec.spacing);
 }
 
-TEST_CASE("filling: a 3D cylinder, predicted layer by layer from the inscribed polygon", "[geometry]") {
+TEST_CASE("filling: a 3D cylinder, predicted layer by layer from the smooth cylinder", "[geometry]") {
   const double radius = 1.0, level = 0.8, spacing = 0.05;
   const int segments = 96;
   const TriangleMesh tank = make_cylindrical_tank(radius, 1.2, segments, 12, 8, DomeRoof{1.5, 6});
@@ -159,28 +159,21 @@ TEST_CASE("filling: a 3D cylinder, predicted layer by layer from the inscribed p
   spec.gravity = g;
   const Particles p = fill_tank(tank, spec);
 
-  // The wall is the regular 96-gon inscribed in the circle (apothem R cos(π/96)); a
-  // lattice column (x, y) is kept when it is at least L₀/2 inside every side. The
-  // bottom corner costs nothing (first layer at L₀/2 from the floor), so all
+  // The wall is the circle the regular 96-gon approximates (the smooth wall behind
+  // the facets); a lattice column (x, y) is kept when it is at least L₀/2 inside it.
+  // The bottom corner costs nothing (first layer at L₀/2 from the floor), so all
   // level / L₀ = 16 layers hold the same columns.
-  const double apothem = radius * std::cos(std::numbers::pi / segments);
   int columns = 0;
   for (int i = 0; i < 40; ++i)
     for (int j = 0; j < 40; ++j) {
       const double x = -radius + (i + 0.5) * spacing, y = -radius + (j + 0.5) * spacing;
-      double reach = -std::numeric_limits<double>::infinity();
-      for (int k = 0; k < segments; ++k) {
-        const double angle = 2.0 * std::numbers::pi * (k + 0.5) / segments;
-        reach = std::max(reach, x * std::cos(angle) + y * std::sin(angle));
-      }
-      if (reach <= apothem - (0.5 - 1e-6) * spacing) ++columns;
+      if (std::hypot(x, y) <= radius - 0.5 * spacing) ++columns;
     }
   CHECK(p.size() == static_cast<std::size_t>(16 * columns));
 
   // Against the continuum π R² h / L₀³ = 20,106: the particles fill the cylinder of
   // radius R − L₀/2 (the clearance), a fraction (1 − L₀/2R)² = 0.951 of it: the boundary
-  // layer's share is L₀/R = 5 %. Round this: the polygon's sagitta R(1 − cos(π/96))
-  // removes 0.1 %, and the number of lattice points in a disc of radius r L₀ deviates
+  // layer's share is L₀/R = 5 %. Round this: the number of lattice points in a disc of radius r L₀ deviates
   // from π r² by O(r^(2/3)) (the Gauss circle problem), ~7 of the ~1,190 columns here
   // (0.6 %). So the count is (1 − L₀/2R)² π R² h / L₀³ within 2 %, well below the
   // continuum.
@@ -203,15 +196,31 @@ TEST_CASE("filling: rings in a cylinder hold the liquid's mass exactly and leave
   spec.spacing = spacing;
   spec.density = 1000.0;
   spec.fill_level = level;
-  spec.cylinder_radius = radius * std::cos(std::numbers::pi / segments);  // the polygon's apothem
+  spec.cylinder_radius = radius;  // the smooth wall the facets approximate
   const Particles p = fill_tank(tank, spec);
-  // The annuli partition the disc of the apothem: the masses sum to rho pi a^2 H.
+  // The annuli partition the disc: the masses sum to rho pi R^2 H.
   double mass = 0.0;
   for (const double m : p.mass) mass += m;
-  const double a = *spec.cylinder_radius;
-  CHECK(mass == Approx(1000.0 * std::numbers::pi * a * a * level).epsilon(1e-12));
-  // Inside, L0/2 clear of every wall (brute force), and the outer ring touches it.
-  check_clearance(tank, p, spacing);
+  CHECK(mass == Approx(1000.0 * std::numbers::pi * radius * radius * level).epsilon(1e-12));
+  // Every annulus kept whole: no particle lost to the facets, which come closer
+  // than the smooth cylinder by up to the sagitta, R (1 - cos(pi/32)) = 0.048 L0.
+  std::size_t expected_count = 0;
+  for (int m = 0; radius - (m + 0.5) * spacing > 0.0; ++m)
+    expected_count += static_cast<std::size_t>(std::max(1L, std::lround(2.0 * std::numbers::pi * (radius - (m + 0.5) * spacing) / spacing)));
+  CHECK(p.size() == expected_count * 10);  // ten layers below the level
+  // L0/2 clear of the smooth cylinder and the bottom, the outer ring and the
+  // first layer touching it; inside every facet.
+  double closest_side = std::numeric_limits<double>::infinity(), closest_bottom = closest_side;
+  for (const auto& x : p.position) {
+    closest_side = std::min(closest_side, radius - std::hypot(x.x(), x.y()));
+    closest_bottom = std::min(closest_bottom, x.z());
+  }
+  CHECK(closest_side == Approx(0.5 * spacing).epsilon(1e-12));
+  CHECK(closest_bottom == Approx(0.5 * spacing).epsilon(1e-12));
+  double closest_facet = std::numeric_limits<double>::infinity();
+  for (const auto& x : p.position) closest_facet = std::min(closest_facet, brute_signed_distance(tank, x));
+  CHECK(closest_facet >= 0.5 * spacing - (1.0 - std::cos(std::numbers::pi / segments)) * radius - 1e-12);
+  CHECK(closest_facet < 0.5 * spacing);
   // No gap: every wall vertex below the level has a particle within 0.9 L0, as
   // at a flat wall (the corner of a lattice cell is sqrt(3)/2 L0 from its
   // centre); the cubic lattice leaves more than L0 at this curved wall.
@@ -253,7 +262,18 @@ TEST_CASE("filling: a closed dome tank filled to the top keeps clear of roof, wa
   const double volume = std::numbers::pi + std::numbers::pi * rise * rise * (3.6 - rise) / 3.0;
   const double area = 3.0 * std::numbers::pi + 2.0 * std::numbers::pi * 1.2 * rise;
   CHECK(static_cast<double>(p.size()) * 1e-3 == Approx(volume - 0.05 * area).epsilon(0.05));
-  check_clearance(tank, p, spec.spacing);
+  // Clear of the smooth walls the facets approximate (the dome's facets come up to
+  // 0.09 L0 closer than its sphere): the cylinder R = 1, the bottom z = 0 and the
+  // sphere of radius 1.2 about (0, 0, 1 - sqrt(1.2^2 - 1)), measured analytically.
+  const double centre = 1.0 - std::sqrt(1.2 * 1.2 - 1.0);
+  double closest = std::numeric_limits<double>::infinity();
+  for (const auto& x : p.position) {
+    double d = std::min(1.0 - std::hypot(x.x(), x.y()), x.z());
+    if (x.z() > 1.0) d = std::min(d, 1.2 - (x - Vector3d(0.0, 0.0, centre)).norm());
+    closest = std::min(closest, d);
+  }
+  INFO("closest " << closest / spec.spacing << " L0");
+  CHECK(closest >= (0.5 - 1e-9) * spec.spacing);
   const double top = tank.bounding_box().max().z();
   CHECK(std::any_of(p.position.begin(), p.position.end(), [&](const Vector3d& x) { return x.z() > 1.0; }));
   CHECK(std::all_of(p.position.begin(), p.position.end(), [&](const Vector3d& x) { return x.z() < top; }));
