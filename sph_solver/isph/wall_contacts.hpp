@@ -24,7 +24,7 @@
 // normal exactly). Measured by the facets alone, a cylinder of 32 facets (2 L0
 // wide) completed its outer rings' kernel sums to -2.1 % at the vertices and held
 // its liquid inside the polygon; the wall's distance and normal then belonged to
-// different walls, and the liquid next to it kept 3-4 times the speeds of the
+// different walls, and the liquid next to it kept 2-3 times the speeds of the
 // rest (cases/hydrostatic_3d/README.md). Which wall a triangle belongs to and
 // which side of it the particle is on go by the triangle's own plane. A particle
 // that has crossed a wall by less than L0/2 is treated as touching it (distance 0),

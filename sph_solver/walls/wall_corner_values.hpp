@@ -53,8 +53,9 @@ class WallCornerValues {
   /// w (m; negative where it bulges out of the plane towards the fluid): the
   /// quadratic through the corners whose normal curvature along each edge the
   /// corner normals give, depth = -1/2 sum_{i<j} w_i w_j (n_j - n_i).(x_j - x_i).
-  /// On a sphere or cylinder of radius R whose vertices lie on it this is
-  /// (R^2 - |x|^2) / (2R), the sagitta, to second order; 0 on a flat wall.
+  /// On a faceted cylinder of radius R (vertices on it, corner normals radial)
+  /// this is (R^2 - r^2) / (2R), R - r to second order; on a sphere the same to
+  /// the corner normals' accuracy; 0 on a flat wall.
   [[nodiscard]] double smooth_depth(const TriangleMesh& mesh, int t, const Eigen::Vector3d& w) const;
   /// Mean curvature of triangle t's wall at barycentric weights w (1/m).
   [[nodiscard]] double curvature_at(int t, const Eigen::Vector3d& w) const {
