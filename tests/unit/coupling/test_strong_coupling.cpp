@@ -48,10 +48,15 @@ OscillatorRun strongly_coupled(Scheme scheme, AccelerationType acceleration) {
 // initial amplitude within the 0.2 s; implicit: error 1.2e-2 of it (the
 // discretisation's, 100 windows per fast period), iqn_ils 2.25 iterations per
 // window (at most 3), aitken 3.94 (at most 4), tolerance 1e-8.
+// One split of the world (1:1 on two ranks, 1:3 on four): these are the
+// schemes' stability, which the split does not change; that every split
+// exchanges the same data through the same OscillatorRun is the two-mass
+// oscillator's check (on four ranks the other splits took 10 of this test's
+// 15 s, oversubscribed).
 TEST_CASE("strongly coupled: explicit coupling diverges, implicit converges", "[coupling][strong]") {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  for (const int fluid_ranks : fluid_rank_choices()) {
+  for (const int fluid_ranks : {fluid_rank_choices().front()}) {
     PartnerSplit split(fluid_ranks);
     for (const auto scheme : {Scheme::parallel_staggered, Scheme::sequential_staggered}) {
       const OscillatorResult r = strongly_coupled(scheme, AccelerationType::constant).run(split);
