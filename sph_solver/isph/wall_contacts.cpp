@@ -20,13 +20,17 @@ constexpr double resolvable_curvature = 0.5;
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-/// Scales the tables for a wall of mean curvature H (see the header): Z_k (1 - 2 H d_k).
+/// The tables for a wall of mean curvature H (see the header): Z_k - H C_k, never
+/// past zero (a wall bulging so much that it leaves the support).
 WallKernelValues curved(WallKernelValues v, double mean_curvature) {
-  const auto factor = [mean_curvature](double depth) { return std::max(0.0, 1.0 - 2.0 * mean_curvature * depth); };
-  v.z0 *= factor(v.depth0);
-  v.z1 *= factor(v.depth1);
-  v.z2 *= factor(v.depth2);
-  v.z3 *= factor(v.depth1);
+  const auto bent = [mean_curvature](double z, double c) {
+    const double value = z - mean_curvature * c;
+    return value * z > 0.0 ? value : 0.0;
+  };
+  v.z0 = bent(v.z0, v.c0);
+  v.z1 = bent(v.z1, v.c1);
+  v.z2 = bent(v.z2, v.c2);
+  v.z3 = bent(v.z3, v.c3);
   return v;
 }
 

@@ -45,11 +45,16 @@
 // never touching: a sheet has no inside to have been crossed into (a path
 // through it is caught at the step's end, wall_crossings.hpp).
 //
-// Curvature: the flat-wall tables count virtual particles in layers parallel to the
-// wall. Behind a curved wall a layer at depth s has the area of the surface times
-// (1 - 2 H s) to first order (H the mean curvature, positive where the wall bulges
-// towards the fluid; the same factor for the curve of a 2D section, where H = κ/2).
-// Each Z_k is therefore scaled by (1 - 2 H d_k), d_k its representative depth.
+// Curvature: the flat-wall tables count the virtual fluid behind the wall's tangent
+// plane. A wall of mean curvature H (positive where it bulges towards the fluid;
+// H = κ/2 for the curve of a 2D section) leaves out, or adds where negative, a
+// sliver (k1 y^2 + k2 z^2)/2 thick at lateral offset (y, z) from the foot: each
+// Z_k becomes Z_k - H C_k to first order, C_k the kernel weights over that sliver
+// per unit H (WallKernelValues). (Scaling Z_k by 1 - 2 H d_k, the area of the
+// layers at its representative depth, overstated the sliver's Z1 about 2.4-fold
+// at L0/2 from the wall: inside a cylinder of radius 10 L0, Z1 came out 4 %
+// above the continuum's, and the liquid next to the wall was pushed inwards at
+// 0.1-0.4 g in its first step.)
 // Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
 // (sharp edges and corners, which the per-wall contacts already handle) each
 // triangle takes its own wall's curvature from the neighbouring vertices

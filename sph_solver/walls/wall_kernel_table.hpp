@@ -25,7 +25,7 @@
 // and the representative depths d_k = M_k / Z_k (0 where Z_k = 0), M_k the same sums
 // weighted by the depth s_j. A field that varies linearly with depth behind the wall,
 // f(s) = a + b s, then sums exactly to Z_k f(d_k): this is the linear extrapolation of
-// eq 13 (d = d_c) and the depth used by the curvature correction. d_k >= L0/2; it is
+// eq 13 (d = d_c). d_k >= L0/2; it is
 // largest at the wall (0.57 L0 to 1.3 L0 over the kernels at h/L0 = 1.2 and 1.5) and
 // falls towards L0/2 as d grows, because the support reaches less deep behind the
 // wall (to R - d), while the particle's distance to it, d + d_k, grows.
@@ -56,6 +56,15 @@ struct WallKernelValues {
   /// extrapolation of a pressure that also varies along the wall (hydrostatic
   /// pressure beside a vertical wall): >= 0.
   double z3 = 0;
+  /// C0..C3: what Z0..Z3 lose per unit mean curvature H of the wall (H > 0 where
+  /// it bulges towards the fluid): Z_k - H C_k to first order. A wall of principal
+  /// curvatures k1, k2 lies (k1 y^2 + k2 z^2) / 2 in front of its tangent plane at
+  /// lateral offset (y, z); the kernel weights on the plane over that sliver give
+  /// C_k = integral of g_k |l|^2 / (D - 1) over the plane at distance d (l the
+  /// lateral offset; in 2D the curve of curvature k has H = k/2 and the same form),
+  /// g_k the summand of Z_k there. Computed on the continuum, by quadrature: the
+  /// sliver is thinner than the lattice's layers.
+  double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
 };
 
 /// -L0^D sum_j W'(r) x_j^2 / r over a full lattice of spacing L0 (x_j a lattice
@@ -122,7 +131,11 @@ class WallKernelTable {
     std::array<double, 3> z{};
     std::array<double, 3> moment{};
     double tangential = 0.0;  ///< Z3
+    std::array<double, 4> curvature{};  ///< C0..C3
   };
+
+  /// C0..C3 at distance >= 0 (WallKernelValues), by quadrature over the plane.
+  static std::array<double, 4> curvature_moments(const Kernel& kernel, double distance);
 
   /// The lattice sums at distance >= 0 (arguments already checked).
   static Node sum_lattice(const Kernel& kernel, double spacing, double distance);
