@@ -3,6 +3,7 @@
 // tank of water 0.6 m wide, filled to 0.4 m (L0 = 0.02 m, quintic spline, h =
 // 1.2 L0), with the hydrostatic pressure rho g (level - y), its neighbour list and
 // wall contacts; a 3D liquid in any tank with its air; cases/hydrostatic_3d's oil.
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -47,6 +48,14 @@ inline Particles fill_water(const FluidModel& model, const TriangleMesh& walls, 
 }
 
 /// cases/hydrostatic_3d's liquid: oil (quartic spline, L0 = 0.05 m, h = 1.2 L0).
+/// The walls' box widened by 2 m: a FluidSolver's domain that no particle leaves.
+inline Eigen::AlignedBox3d domain_around(const TriangleMesh& walls) {
+  Eigen::AlignedBox3d domain = walls.bounding_box();
+  domain.min().array() -= 2.0;
+  domain.max().array() += 2.0;
+  return domain;
+}
+
 inline FluidModel oil_3d() {
   FluidModel m = water();
   m.dimension = 3;

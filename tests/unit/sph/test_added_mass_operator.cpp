@@ -24,6 +24,7 @@
 #include "support/petsc_options_scope.hpp"
 
 using namespace tankfsi::sph;
+using tankfsi::test::domain_around;
 
 namespace {
 
@@ -44,14 +45,6 @@ double potential_flow_breathing_mass(double rho, double radius, double depth) {
     if (k * radius > 600.0) break;  // I0 / I1 -> 1 and the terms fall as n^-3; beyond here below 1e-9 of the sum
   }
   return 4.0 * std::numbers::pi * rho * radius * depth * depth * sum;
-}
-
-/// The walls' box widened by 2 m: no particle leaves it.
-Eigen::AlignedBox3d domain_around(const TriangleMesh& walls) {
-  Eigen::AlignedBox3d domain = walls.bounding_box();
-  domain.min().array() -= 2.0;
-  domain.max().array() += 2.0;
-  return domain;
 }
 
 /// The tank's wall x = 0 (both rows of its extruded vertices), pushed along +x, into the liquid.
