@@ -51,8 +51,8 @@
 // sliver (k1 y^2 + k2 z^2)/2 thick at lateral offset (y, z) from the foot: each
 // Z_k becomes Z_k - H C_k to first order, C_k the kernel weights over that sliver
 // per unit H (WallKernelValues). (Scaling Z_k by 1 - 2 H d_k, the area of the
-// layers at its representative depth, overstated the sliver's Z1 about 2.4-fold
-// at L0/2 from the wall: inside a cylinder of radius 10 L0, Z1 came out 4 %
+// layers at its representative depth, overstated the sliver's Z1 2.6-fold at
+// L0/2 from the wall (quartic spline): inside a cylinder of radius 10 L0, Z1 came out 4 %
 // above the continuum's, and the liquid next to the wall was pushed inwards at
 // 0.1-0.4 g in its first step.)
 // Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
