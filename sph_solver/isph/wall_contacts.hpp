@@ -54,7 +54,7 @@
 // layers at its representative depth, overstated the sliver's Z1 2.6-fold at
 // L0/2 from the wall (quartic spline): inside a cylinder of radius 10 L0, Z1 came out 4 %
 // above the continuum's, and the liquid next to the wall was pushed inwards at
-// 0.1-0.4 g in its first step.)
+// 0.02-0.4 g in its first step, growing with depth.)
 // Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
 // (sharp edges and corners, which the per-wall contacts already handle) each
 // triangle takes its own wall's curvature from the neighbouring vertices

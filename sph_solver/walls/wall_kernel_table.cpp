@@ -45,6 +45,20 @@ double full_lattice_share(const Kernel& kernel, double spacing) {
   return full_lattice_sum(kernel, spacing, [&kernel](int, double r) { return kernel.value(r); });
 }
 
+/// The summands of Z0..Z3 (wall_kernel_table.hpp) of one virtual particle at
+/// normal distance `height` and lateral distance squared `lateral_squared` from
+/// the particle, r = sqrt(height^2 + lateral_squared) > 0: W, W' height / r,
+/// r W' / (r^2 + eta^2), -W' lateral^2 / (r (D - 1)). The lattice sums and the
+/// curvature moments take the same summands.
+std::array<double, 4> table_summands(const Kernel& kernel, double height, double lateral_squared) {
+  const double h = kernel.smoothing_length();
+  const double r_squared = height * height + lateral_squared;
+  const double r = std::sqrt(r_squared);
+  const double slope = kernel.derivative(r);
+  return {kernel.value(r), slope * height / r, r * slope / (r_squared + 0.01 * h * h),
+          -slope * lateral_squared / r / (kernel.dimension() - 1)};
+}
+
 }  // namespace
 
 double lattice_moment(const Kernel& kernel, double spacing) {
@@ -118,8 +132,6 @@ WallKernelValues WallKernelTable::direct_sum(const Kernel& kernel, double spacin
 WallKernelTable::Node WallKernelTable::sum_lattice(const Kernel& kernel, double spacing, double distance) {
   const double support = kernel.support_radius();
   const double support_squared = support * support;
-  const double h = kernel.smoothing_length();
-  const double eta_squared = 0.01 * h * h;
   const bool planar = kernel.dimension() == 2;
   Node node;
   for (int layer = 0;; ++layer) {
@@ -131,17 +143,14 @@ WallKernelTable::Node WallKernelTable::sum_lattice(const Kernel& kernel, double 
     const int reach_b = planar ? 0 : reach;
     for (int a = -reach; a <= reach; ++a) {
       for (int b = -reach_b; b <= reach_b; ++b) {
-        const double r_squared = height * height + spacing * spacing * (a * a + b * b);
-        if (r_squared >= support_squared) continue;
-        const double r = std::sqrt(r_squared);  // > 0: height >= L0/2
-        const double slope = kernel.derivative(r);
-        const std::array<double, 3> weight{kernel.value(r), slope * height / r,
-                                           r * slope / (r_squared + eta_squared)};
+        const double lateral_squared = spacing * spacing * (a * a + b * b);
+        if (height * height + lateral_squared >= support_squared) continue;
+        const std::array<double, 4> weight = table_summands(kernel, height, lateral_squared);  // r > 0: height >= L0/2
         for (std::size_t k = 0; k < 3; ++k) {
           node.z[k] += weight[k];
           node.moment[k] += weight[k] * depth;
         }
-        node.tangential -= slope * spacing * spacing * (a * a + b * b) / r / (planar ? 1.0 : 2.0);
+        node.tangential += weight[3];
       }
     }
   }
@@ -167,19 +176,15 @@ std::array<double, 4> WallKernelTable::curvature_moments(const Kernel& kernel, d
   const double support = kernel.support_radius();
   if (distance >= support) return c;
   const bool planar = kernel.dimension() == 2;
-  const double eta_squared = 0.01 * kernel.smoothing_length() * kernel.smoothing_length();
   const double reach = std::sqrt(support * support - distance * distance);
   constexpr int intervals = 2048;
   const double step = reach / intervals;
-  for (int i = 0; i <= intervals; ++i) {
+  // i = 0 (l = 0) has measure 0, and on the plane through the particle r = 0 there.
+  for (int i = 1; i <= intervals; ++i) {
     const double l = i * step;
-    const double r = std::sqrt(distance * distance + l * l);
-    const double weight = (i == 0 || i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) * step / 3.0;
-    const double measure = planar ? 2.0 * l * l : 2.0 * std::numbers::pi * l * l * l / 2.0;  // |l|^2/(D-1) dA
-    if (r == 0.0) continue;  // l = 0 on the plane through the particle: measure 0
-    const double slope = kernel.derivative(r);
-    const std::array<double, 4> g{kernel.value(r), slope * distance / r, r * slope / (r * r + eta_squared),
-                                  -slope * l * l / r / (planar ? 1.0 : 2.0)};
+    const double weight = (i == intervals ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0)) * step / 3.0;
+    const double measure = planar ? 2.0 * l * l : std::numbers::pi * l * l * l;  // |l|^2 / (D - 1) dA
+    const std::array<double, 4> g = table_summands(kernel, distance, l * l);
     for (std::size_t k = 0; k < 4; ++k) c[k] += weight * measure * g[k];
   }
   return c;

@@ -23,7 +23,8 @@ TEST_CASE("a cylinder at rest: the ring next to the curved wall stays in balance
   // (10 L0): the ring was pushed inwards, its mean a_r -0.185 g, the largest
   // |a_r| 0.32 g (measured by reverting). With the sliver: mean +0.0195 g,
   // largest 0.062 g, on 1 to 4 ranks alike. The rings are not a lattice (their
-  // kernel sums lie 0.3 % apart; the box's lattice moves off by 2e-4 g at most),
+  // kernel sums within 0.3 % of the lattice's away from the axis; the box's lattice
+  // moves off by 2e-4 g at most),
   // so the bounds are the measured values' with a margin: 0.05 g on the ring's
   // mean, 0.1 g on any particle, both well below the area scaling's.
   const tankfsi::test::OilCylinder tank;
