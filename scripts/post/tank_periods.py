@@ -84,35 +84,39 @@ def _expm(matrix):
     return result
 
 
-def _oscillator_kernels(period_s, damping_ratio, dt, n):
-    """Discrete kernels (2 x n: q and q') of the oscillator's exact response to
-    an input linear between samples, x[k] = sum_m W[m] u[k - m], and the free
-    responses of q to unit initial q and q' (2 x n). Needs damping < 1."""
+def _oscillator_kernels(period_s, damping_ratios, dt, n):
+    """For each damping ratio (Z of them): discrete kernels (Z x 2 x n: q and
+    q') of the oscillator's exact response to an input linear between samples,
+    x[k] = sum_m W[m] u[k - m], and the free responses of q to unit initial q
+    and q' (Z x 2 x n). Needs damping < 1."""
     omega = 2 * math.pi / period_s
-    a = np.array([[0.0, 1.0], [-omega ** 2, -2 * damping_ratio * omega]])
-    augmented = np.zeros((4, 4))
-    augmented[:2, :2] = a
-    augmented[1, 2] = 1.0  # B = (0, 1): the input drives q''
-    augmented[2, 3] = 1.0  # the input's slope over the step
-    e = _expm(augmented * dt)
-    g1 = e[:2, 3] / dt  # weight of u[k+1] in x[k+1]
-    g0 = e[:2, 2] - g1  # weight of u[k]
+    zeta = np.asarray(damping_ratios, dtype=float)
+    g1 = np.empty((len(zeta), 2))
+    g0 = np.empty((len(zeta), 2))
+    for k, z in enumerate(zeta):
+        augmented = np.zeros((4, 4))
+        augmented[:2, :2] = [[0.0, 1.0], [-omega ** 2, -2 * z * omega]]
+        augmented[1, 2] = 1.0  # B = (0, 1): the input drives q''
+        augmented[2, 3] = 1.0  # the input's slope over the step
+        e = _expm(augmented * dt)
+        g1[k] = e[:2, 3] / dt  # weight of u[k+1] in x[k+1]
+        g0[k] = e[:2, 2] - g1[k]  # weight of u[k]
     # Phi^m = exp(A m dt) = exp(-zeta omega t) [cos(wd t) I + sin(wd t)/wd (A + zeta omega I)]
     t = dt * np.arange(n + 1)
-    omega_d = omega * math.sqrt(1 - damping_ratio ** 2)
-    decay = np.exp(-damping_ratio * omega * t)
+    zeta = zeta[:, None]
+    omega_d = omega * np.sqrt(1 - zeta ** 2)
+    decay = np.exp(-zeta * omega * t)
     c = decay * np.cos(omega_d * t)
     s = decay * np.sin(omega_d * t) / omega_d
-    zo = damping_ratio * omega
-    phi = np.empty((n + 1, 2, 2))
-    phi[:, 0, 0] = c + s * zo
-    phi[:, 0, 1] = s
-    phi[:, 1, 0] = -omega ** 2 * s
-    phi[:, 1, 1] = c + s * (-2 * zo + zo)
-    kernels = phi[:n] @ g1  # K1[m] = Phi^m g1
-    kernels[1:] += phi[:n - 1] @ g0  # K0[m] = Phi^(m-1) g0, m >= 1
-    free = np.stack([phi[:n, 0, 0], phi[:n, 0, 1]])
-    return kernels.T, free
+    zo = zeta * omega
+    phi = ((c + s * zo, s), (-omega ** 2 * s, c - s * zo))  # entries (row, column), each Z x (n + 1)
+    kernels = np.empty((len(zeta), 2, n))
+    for row in range(2):
+        # K1[m] = Phi^m g1; K0[m] = Phi^(m-1) g0, m >= 1
+        kernels[:, row] = phi[row][0][:, :n] * g1[:, :1] + phi[row][1][:, :n] * g1[:, 1:]
+        kernels[:, row, 1:] += phi[row][0][:, :n - 1] * g0[:, :1] + phi[row][1][:, :n - 1] * g0[:, 1:]
+    free = np.stack([phi[0][0][:, :n], phi[0][1][:, :n]], axis=1)
+    return kernels, free
 
 
 class _Model:
@@ -140,27 +144,31 @@ class _Model:
         self.null_rss = float(self.null_residual @ self.null_residual)
         self.columns_per_oscillator = 2 * len(dynamic_inputs) + 2
 
-    def oscillator_columns(self, period_s, damping_ratio):
-        """q and q' of each input, then the two free responses (n x columns)."""
-        kernels, free = _oscillator_kernels(period_s, damping_ratio, self.dt, self.n)
-        kernel_spectra = np.fft.rfft(kernels, self.nfft, axis=1)
+    def oscillator_columns(self, period_s, damping_ratios):
+        """For each damping ratio: q and q' of each input, then the two free
+        responses (Z x n x columns), projected off the drift and feedthrough."""
+        kernels, free = _oscillator_kernels(period_s, damping_ratios, self.dt, self.n)
+        kernel_spectra = np.fft.rfft(kernels, self.nfft, axis=2)
         columns = []
         # The kernels' term in u[0] alone is a free response: the free columns hold it.
         for spectrum in self.input_spectra:
-            response = np.fft.irfft(kernel_spectra * spectrum, self.nfft, axis=1)[:, :self.n]
-            columns += [response[0], response[1]]
-        columns += [free[0], free[1]]
-        return np.array(columns).T
+            columns.append(np.fft.irfft(kernel_spectra * spectrum, self.nfft, axis=2)[:, :, :self.n])
+        columns.append(free)
+        columns = np.concatenate(columns, axis=1).transpose(0, 2, 1)
+        return columns - self.null_orthonormal @ (self.null_orthonormal.T @ columns)
+
+    def fit_columns(self, columns):
+        """Residual of the best linear combination of `columns` (n x m, already
+        off the drift and feedthrough)."""
+        scale = np.linalg.norm(columns, axis=0)
+        scale[scale == 0] = 1.0
+        coefficients, *_ = np.linalg.lstsq(columns / scale, self.null_residual, rcond=None)
+        return self.null_residual - (columns / scale) @ coefficients
 
     def fit(self, oscillators):
         """Residual and fitted response of the best linear combination of the
         columns of every oscillator [(T, zeta), ...]."""
-        columns = np.hstack([self.oscillator_columns(p, z) for p, z in oscillators])
-        columns -= self.null_orthonormal @ (self.null_orthonormal.T @ columns)
-        scale = np.linalg.norm(columns, axis=0)
-        scale[scale == 0] = 1.0
-        coefficients, *_ = np.linalg.lstsq(columns / scale, self.null_residual, rcond=None)
-        residual = self.null_residual - (columns / scale) @ coefficients
+        residual = self.fit_columns(np.hstack([self.oscillator_columns(p, [z])[0] for p, z in oscillators]))
         return residual, self.response - residual
 
     def parameters(self, oscillators):
@@ -219,13 +227,15 @@ def _scan(model, oscillators, slot, band, duration, dampings, deepest):
     grid points of the `deepest` lowest local minima over T, as oscillator
     lists to refine."""
     periods = _period_grid(band, duration)
+    # The others' columns are the same at every grid point: made once.
+    held = [model.oscillator_columns(o[0], [o[1]])[0] for k, o in enumerate(oscillators) if k != slot]
 
-    def cost(p, z):
-        trial = list(oscillators)
-        trial[slot] = (p, z)
-        return float(np.sum(model.fit(trial)[0] ** 2))
+    def costs_at(period):
+        """The residual's sum of squares at each damping of the grid."""
+        return [float(np.sum(model.fit_columns(np.hstack(held + [columns])) ** 2))
+                for columns in model.oscillator_columns(period, dampings)]
 
-    costs = np.array([[cost(p, z) for z in dampings] for p in periods])
+    costs = np.array([costs_at(p) for p in periods])
     best_per_period = costs.min(axis=1)
     padded = np.concatenate([[np.inf], best_per_period, [np.inf]])
     minima = [k for k in range(len(periods)) if padded[k + 1] <= min(padded[k], padded[k + 2])]
