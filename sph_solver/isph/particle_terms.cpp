@@ -56,7 +56,8 @@ double extrapolation_distance(const Neighbourhood& n, const WallContact& c) {
 /// The pressure gradient of a particle near walls from its fluid neighbours alone:
 /// their sum covers the part T_fluid = I - sum_w T_w + T_overlaps of the moment tensor
 /// -sum_j V_j x_ij (x) grad_i W_ij (the identity on a full lattice), each wall
-/// holding T_w = -Z1 (r_iw + d1) n n^T normal to it and Z3 along it, each corner's
+/// holding T_w = -Z1 (r_iw + d1) n n^T normal to it and its tangential_moment along it
+/// (Z3 (I - n n^T) on a flat wall; wall_contacts.hpp), each corner's
 /// overlap (counted by both walls) T_o = -S, each octant of three walls (counted by
 /// none then) -T_o; so
 /// grad P = T_fluid^-1 sum_j V_j (P_j - P_i) grad_i W_ij. (In 2D the z row is the identity.)
@@ -71,7 +72,7 @@ Eigen::Vector3d renormalised_gradient(const Neighbourhood& n, std::span<const Wa
   for (const WallContact& c : contacts) {
     const Eigen::Matrix3d normal_part = c.normal * c.normal.transpose();
     fluid_moment -= -c.values.z1 * (c.distance + c.values.depth1) * normal_part;
-    fluid_moment -= c.values.z3 * (Eigen::Matrix3d::Identity() - normal_part);
+    fluid_moment -= c.tangential_moment;
   }
   for (const BoundaryOverlap& o : overlaps) fluid_moment -= o.second_moment();
   for (const CornerOctant& o : octants) fluid_moment += o.second_moment();
@@ -308,7 +309,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
                                                          (c.distance + c.values.depth1);
       const Eigen::Vector3d along_wall = tangential_gradient - tangential_gradient.dot(c.normal) * c.normal;
       const Eigen::Vector3d wall_part =
-          -c.values.z1 * (rho0 * p_i + wall_pressure / rho0) * c.normal - c.values.z3 / rho0 * along_wall;
+          -c.values.z1 * (rho0 * p_i + wall_pressure / rho0) * c.normal - c.tangential_moment * along_wall / rho0;
       sum += wall_part;
       add_force(c, i, wall_part);
     }

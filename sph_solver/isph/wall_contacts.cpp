@@ -182,6 +182,7 @@ WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& 
   }
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   double curvature = 0.0;
+  Eigen::Matrix3d shape_deviator = Eigen::Matrix3d::Zero();
   double depth = 0.0;  // of the smooth wall behind the facets' planes
   for (int f = 0; f < contact.foot_count; ++f) {
     WallFoot& foot = contact.feet[at(f)];
@@ -191,16 +192,31 @@ WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& 
     // Seen from behind, a wall that bulges towards the front is hollow.
     const double sign = from_behind[wall.hits[at(f)]] ? -1.0 : 1.0;
     curvature += sign * foot.weight * walls.corner_values().curvature_at(foot.triangle, foot.barycentric);
+    shape_deviator += sign * foot.weight * walls.corner_values().shape_deviator(foot.triangle);
     depth += sign * foot.weight * walls.corner_values().smooth_depth(walls.mesh(), foot.triangle, foot.barycentric);
   }
   contact.normal = contact.foot_count == 1 ? wall.normal : normal.normalized();
   contact.distance = wall.height <= 0.0 ? 0.0 : std::max(0.0, nearest + depth);
   contact.values = curved(walls.table().at(contact.distance), curvature);
+  contact.tangential_moment = tangential_moment(contact.values, contact.normal, shape_deviator, dimension);
   contact.velocity = at_contact(walls.mesh(), walls.vertex_velocities(), contact);
   return contact;
 }
 
 }  // namespace
+
+Eigen::Matrix3d tangential_moment(const WallKernelValues& values, const Eigen::Vector3d& normal,
+                                  const Eigen::Matrix3d& shape_deviator, int dimension) {
+  const Eigen::Matrix3d along = Eigen::Matrix3d::Identity() - normal * normal.transpose();
+  Eigen::Matrix3d moment = values.z3 * along;
+  if (dimension == 3 && values.z3 > 0.0) {
+    // The deviator in the plane normal to n (the feet's planes differ from it
+    // slightly), traceless there again.
+    const Eigen::Matrix3d in_plane = along * shape_deviator * along;
+    moment -= 0.5 * values.c3 * (in_plane - 0.5 * in_plane.trace() * along);
+  }
+  return moment;
+}
 
 WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::Vector3d> positions, int dimension,
                                 const WallCandidates* candidates) {

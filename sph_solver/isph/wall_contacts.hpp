@@ -55,6 +55,18 @@
 // L0/2 from the wall (quartic spline): inside a cylinder of radius 10 L0, Z1 came out 4 %
 // above the continuum's, and the liquid next to the wall was pushed inwards at
 // 0.02-0.4 g in its first step, growing with depth.)
+// The sliver also bends the tangential moment Z3 (I - n n^T) (WallContact::
+// tangential_moment): between lateral directions a and b it weighs
+// (1/2) integral w l_a l_b (l^T K l) over the plane (w the kernel factor of Z3's
+// summand, K the wall's shape operator, H = tr K / 2), which a radial w turns
+// into H C3 P + (C3/2) K_dev, P the projector along the wall and K_dev = K - H P
+// (WallCornerValues::shape_deviator). A sphere's is 0; a cylinder's
+// sliver lies across the axis, not along it, so its moment along the axis
+// changes by H C3 / 2 and around it by 3 H C3 / 2. (Taking H C3 both ways made
+// the vertical pressure gradient beside a cylinder's wall too large: the ring
+// next to it rose at 0.008 g under its weight, driving a steady roll up the wall,
+// inwards at mid-depth, out along the floor; measured in a damped run of the
+// case cases/hydrostatic_3d.)
 // Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
 // (sharp edges and corners, which the per-wall contacts already handle) each
 // triangle takes its own wall's curvature from the neighbouring vertices
@@ -146,7 +158,19 @@ struct WallContact {
   double distance = 0.0;                                  ///< r_iw >= 0
   WallKernelValues values;                                ///< curvature-corrected
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();     ///< wall velocity at the closest point
+  /// The missing neighbours' part of -sum_j V_j x_ij (x) grad_i W_ij along the
+  /// wall: values.z3 (I - n n^T), less the sliver's anisotropic share on a wall
+  /// curved unequally in its two directions (see above; tangential_moment()).
+  Eigen::Matrix3d tangential_moment = Eigen::Matrix3d::Zero();
 };
+
+/// values.z3 (I - n n^T) - (C3 / 2) K_dev: the tangential moment of a wall of unit
+/// normal n whose shape operator has the traceless part K_dev (in the plane normal
+/// to n; see above), `values` already bent by the mean curvature (Z3 - H C3). In
+/// 2D (one lateral direction in the plane, the z row not used) and where the
+/// sliver took Z3 to zero (curved() never passes zero), the first term alone.
+[[nodiscard]] Eigen::Matrix3d tangential_moment(const WallKernelValues& values, const Eigen::Vector3d& normal,
+                                                const Eigen::Matrix3d& shape_deviator, int dimension);
 
 /// The contacts of particles 0 .. n-1, the overlaps of orthogonal pairs of them
 /// (corners: first and second index the particle's own contacts) and the octants

@@ -14,6 +14,27 @@ double corner_angle(const TriangleMesh& mesh, int t, int k) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+/// The traceless shape operator of triangle t from its corner normals (see the
+/// header): n(x) = sum_k lambda_k(x) n_k has the gradient G = sum_k n_k grad(lambda_k)^T,
+/// grad(lambda_k) = nu x (x_{k+2} - x_{k+1}) / |c|, c = (x_1 - x_0) x (x_2 - x_0),
+/// nu = c / |c|. Zero where the corners share one normal (a flat wall, bit for bit).
+Eigen::Matrix3d shape_deviator_of(const TriangleMesh& mesh, int t, const std::array<Eigen::Vector3d, 3>& normals) {
+  if (normals[0] == normals[1] && normals[1] == normals[2]) return Eigen::Matrix3d::Zero();
+  const Eigen::Vector3d cross = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+  const double twice_area = cross.norm();
+  if (!(twice_area > 0.0)) return Eigen::Matrix3d::Zero();
+  const Eigen::Vector3d nu = cross / twice_area;
+  Eigen::Matrix3d gradient = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d edge = mesh.corner(t, (k + 2) % 3) - mesh.corner(t, (k + 1) % 3);
+    gradient += normals[static_cast<std::size_t>(k)] * (nu.cross(edge) / twice_area).transpose();
+  }
+  const Eigen::Matrix3d plane = Eigen::Matrix3d::Identity() - nu * nu.transpose();
+  const Eigen::Matrix3d in_plane = plane * gradient * plane;
+  const Eigen::Matrix3d shape = 0.5 * (in_plane + in_plane.transpose());
+  return shape - 0.5 * shape.trace() * plane;
+}
+
 }  // namespace
 
 WallCornerValues::WallCornerValues(const TriangleMesh& mesh) {
@@ -28,6 +49,7 @@ WallCornerValues::WallCornerValues(const TriangleMesh& mesh) {
     for (int k = 0; k < 3; ++k) around_[at(next[at(triangles[at(t)][at(k)])]++)] = {t, k};
   normals_.resize(triangles.size());
   curvature_.resize(triangles.size());
+  shape_deviator_.resize(triangles.size());
   wall_curvature_.resize(mesh.vertex_count());
 }
 
@@ -73,6 +95,7 @@ void WallCornerValues::update(const TriangleMesh& mesh, std::span<const double> 
       curvature_[at(t)][at(k)] =
           std::isfinite(h) ? h : (resolvable_neighbours > 0 ? neighbour_curvature / resolvable_neighbours : 0.0);
     }
+    shape_deviator_[at(t)] = shape_deviator_of(mesh, t, normals_[at(t)]);
   }
 }
 

@@ -62,6 +62,18 @@ class WallCornerValues {
     const auto& h = curvature_[at(t)];
     return w[0] * h[0] + w[1] * h[1] + w[2] * h[2];
   }
+  /// The traceless part of triangle t's shape operator (1/m, 3 x 3, in the
+  /// triangle's plane): K - (tr K / 2) P, K the symmetric part of the gradient of
+  /// the corner normals' linear interpolation, P the projector onto the plane.
+  /// Its normal curvature along each edge, e^T K e / |e|^2 = (n_j - n_i).e / |e|^2,
+  /// is the one smooth_depth() takes; its trace is left to the mean curvature
+  /// (Meyer's, curvature_at()). On a faceted cylinder of radius R with radial
+  /// corner normals it is (1/2R) (a a^T - t t^T) to the facets' accuracy (a the
+  /// axis, t the direction around it; sign: the front normals' curvature, K =
+  /// -(1/R) t t^T for normals pointing inwards), 0 on a sphere and a flat wall:
+  /// what tells a wall curved one way from one curved both ways, which the wall
+  /// contacts' tangential moment needs (wall_contacts.hpp). 0 in 2D use.
+  [[nodiscard]] const Eigen::Matrix3d& shape_deviator(int t) const { return shape_deviator_[at(t)]; }
 
  private:
   static std::size_t at(int i) { return static_cast<std::size_t>(i); }
@@ -70,6 +82,7 @@ class WallCornerValues {
   std::vector<std::array<int, 2>> around_;        ///< (triangle, its corner index at the vertex)
   std::vector<std::array<Eigen::Vector3d, 3>> normals_;
   std::vector<std::array<double, 3>> curvature_;
+  std::vector<Eigen::Matrix3d> shape_deviator_;
   std::vector<double> wall_curvature_;  ///< per vertex: NaN where walls meet (scratch of update)
 };
 

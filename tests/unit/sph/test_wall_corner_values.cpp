@@ -169,3 +169,54 @@ TEST_CASE("the smooth wall behind the facets: a faceted cylinder's sagitta, a sp
       for (const Vector3d& w : weights) CHECK(depth_at(plane, corners, t, w) == 0.0);
   }
 }
+
+// The traceless shape operator from the corner normals, against the surfaces the
+// facets approximate. A faceted cylinder's radial normals change along a chord by
+// -(chord)/R and not at all along the axis, so a wall triangle's is
+// (1/2R) (a a^T - c c^T) exactly (a the axis, c its chord's direction); a
+// sphere's is zero up to the corner normals' accuracy; a flat wall's zero bit for bit.
+TEST_CASE("the shape deviator of the facets: a cylinder's across its axis, none on a sphere or a flat wall",
+          "[wall_geometry]") {
+  SECTION("cylinder (inward normals)") {
+    const double radius = 0.7;
+    const TriangleMesh tank = make_cylindrical_tank(radius, 1.0, 32, 8, 4);
+    WallCornerValues corners(tank);
+    corners.update(tank, vertex_mean_curvature(tank));
+    int walls = 0;
+    for (int t = 0; t < static_cast<int>(tank.triangles().size()); ++t) {
+      const Vector3d normal = tank.face_normals()[at(t)];
+      if (std::abs(normal.z()) > 1e-9) {
+        if (normal.z() > 0.99) CHECK(corners.shape_deviator(t).norm() == 0.0);  // the flat bottom
+        continue;
+      }
+      const Vector3d axis = Vector3d::UnitZ();
+      const Vector3d chord = axis.cross(normal).normalized();
+      const Eigen::Matrix3d expected = (axis * axis.transpose() - chord * chord.transpose()) / (2.0 * radius);
+      INFO("triangle " << t << ": " << corners.shape_deviator(t));
+      CHECK((corners.shape_deviator(t) - expected).norm() < 1e-12 / radius);
+      ++walls;
+    }
+    CHECK(walls == 32 * 8 * 2);
+  }
+  SECTION("sphere: no deviator beyond the corner normals' error") {
+    const double radius = 2.0;
+    const TriangleMesh sphere = make_icosphere(radius, 3);
+    WallCornerValues corners(sphere);
+    corners.update(sphere, vertex_mean_curvature(sphere));
+    double worst = 0.0;
+    for (int t = 0; t < static_cast<int>(sphere.triangles().size()); ++t)
+      worst = std::max(worst, corners.shape_deviator(t).norm() * radius);
+    // Measured: R |K_dev| = 0.052 at worst (the icosphere's irregular vertices);
+    // a cylinder's is 0.71 (1/sqrt 2).
+    INFO("worst |K_dev| R " << worst);
+    CHECK(worst < 0.1);
+  }
+  SECTION("flat wall: exactly zero") {
+    const TriangleMesh plane =
+        make_rectangle(Vector3d(0.1, -0.3, 0.2), Vector3d(0.7, 0.2, 0.1), Vector3d(-0.1, 0.4, 0.3), 6);
+    WallCornerValues corners(plane);
+    corners.update(plane, vertex_mean_curvature(plane));
+    for (int t = 0; t < static_cast<int>(plane.triangles().size()); ++t)
+      CHECK(corners.shape_deviator(t).norm() == 0.0);
+  }
+}
