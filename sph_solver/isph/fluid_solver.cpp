@@ -89,17 +89,6 @@ StepSearch search_of_step(const FluidSolver& solver, std::span<const Eigen::Vect
           find_wall_candidates(solver.walls(), now.first(at(owned)), move)};
 }
 
-/// True for a free-surface particle and for one with a free-surface neighbour.
-/// Lind et al. (2012) shift such particles only along the surface; with the surface
-/// normal taken from grad C itself that tangential part is zero, so they are not
-/// shifted at all — a normal shift would pack the layers under the surface into it
-/// until the surface particles no longer count as surface (rho* >= beta rho0).
-bool near_free_surface(const Neighbourhood& n, const std::vector<unsigned char>& free_surface, int i) {
-  if (free_surface[at(i)] != 0) return true;
-  const auto neighbours = n.neighbours.neighbours_of(i);
-  return std::any_of(neighbours.begin(), neighbours.end(), [&](int j) { return free_surface[at(j)] != 0; });
-}
-
 /// The particle a failed check names, the same on every rank: of all ranks'
 /// offenders, the one with the lowest id; `count` offenders in all.
 struct Offender {
@@ -316,11 +305,14 @@ std::vector<double> FluidSolver::added_mass_operator(std::span<const int> vertic
       });
   Neighbourhood n{kernel_, model_, now.position, now.neighbours, contacts, walls_.mesh(), owned};
   const auto kernel_sum = with_ghosts(halo_, kernel_density(n, mass));
+  const auto free_surface = with_ghosts(halo_, detect_free_surface(n, mass, kernel_sum));
   const std::vector<SurfaceContact> air = surface_contacts(n, mass, kernel_sum, walls_);
   n.surface = air;
   const auto density =
       with_ghosts(halo_, completed_density(kernel_sum, air, model_.density * walls_.table().lattice_share(),
                                            model_.density));
+  const auto scale = moment_scales(n, mass, density, free_surface);
+  n.moment_scale = scale;
   ppe_.assemble(n, mass, density, index, std::vector<unsigned char>(mass.size(), 0));
   std::vector<double> matrix(count * count, 0.0);
   std::vector<double> pressure;
@@ -350,6 +342,13 @@ std::vector<Eigen::Vector3d> FluidSolver::wall_motion_impulse(const Neighbourhoo
   std::vector<Eigen::Vector3d> impulse(walls_.mesh().vertex_count(), Eigen::Vector3d::Zero());
   static_cast<void>(pressure_acceleration(n, mass, density, pressure, at_rest, at_rest, dt, impulse));
   return impulse;
+}
+
+std::vector<double> FluidSolver::moment_scales(const Neighbourhood& n, std::span<const double> mass,
+                                               std::span<const double> density,
+                                               std::span<const unsigned char> free_surface) {
+  const auto known = with_ghosts(halo_, moment_scale(n, mass, density, free_surface));
+  return with_ghosts(halo_, smoothed_moment_scale(n, known));
 }
 
 std::vector<std::int64_t> FluidSolver::global_indices() const {
@@ -430,6 +429,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
   std::vector<double> density;
   std::vector<unsigned char> free_surface;
   std::vector<SurfaceContact> air;
+  std::vector<double> scale;
   std::vector<double> source(at(owned));
   {
     auto scope = stage("ppe_assemble");
@@ -448,6 +448,8 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     air = surface_contacts(n, mass, kernel_sum, walls_);
     n.surface = air;
     density = with_ghosts(halo_, completed_density(kernel_sum, air, rest_density, rho0));
+    scale = moment_scales(n, mass, density, free_surface);
+    n.moment_scale = scale;
     predicted_density_.assign(kernel_sum.begin(), kernel_sum.begin() + owned);
     const auto v_all = with_ghosts(halo_, v_star);
     const auto divergence = velocity_divergence(n, mass, density, v_all);
@@ -484,7 +486,7 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
     const TriangleMesh& mesh = walls_.mesh();
     WallContacts jumped = next.walls;
     for (WallContact& c : jumped.contacts) c.velocity = at_contact(mesh, wall_velocity_jump_, c);
-    Neighbourhood moved{kernel_, model_, next.position, next.neighbours, jumped, mesh, owned, n.surface};
+    Neighbourhood moved{kernel_, model_, next.position, next.neighbours, jumped, mesh, owned, n.surface, scale};
     std::vector<double> jump_pressure;
     try {
       // The step's pressure holds the jump's (p = impulse / dt): solving the
@@ -515,6 +517,11 @@ StepReport FluidSolver::step(double t, double dt, const Eigen::Vector3d& ground_
       const auto gradient = concentration_gradient(n, mass, density);
       std::vector<Eigen::Vector3d> shift(at(owned), Eigen::Vector3d::Zero());
       for (int i = 0; i < owned; ++i) {
+        // Lind et al. (2012) shift particles at the surface only along it; with the
+        // surface normal taken from grad C itself that tangential part is zero, so
+        // they are not shifted at all — a normal shift would pack the layers under
+        // the surface into it until the surface particles no longer count as
+        // surface (rho* >= beta rho0).
         if (near_free_surface(n, free_surface, i)) continue;
         Eigen::Vector3d dr = -diffusion * gradient[at(i)];
         if (model_.dimension == 2) dr.z() = 0.0;

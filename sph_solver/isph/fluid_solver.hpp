@@ -208,6 +208,11 @@ class FluidSolver {
   void remove_escaped();
   /// Collective: the PPE's global row of each owned particle (ranks in order).
   [[nodiscard]] std::vector<std::int64_t> global_indices() const;
+  /// Collective: each particle's moment against the lattice's, owned then ghosts
+  /// (moment_scale() and smoothed_moment_scale(), particle_terms.hpp).
+  [[nodiscard]] std::vector<double> moment_scales(const Neighbourhood& n, std::span<const double> mass,
+                                                  std::span<const double> density,
+                                                  std::span<const unsigned char> free_surface);
   /// "step N at t = T s: " for the step starting at t.
   [[nodiscard]] std::string step_prefix(double t) const;
   /// Collective: throws std::runtime_error naming the step, the time and the

@@ -175,9 +175,53 @@ std::vector<double> position_divergence(const Neighbourhood& n, std::span<const 
       sum += -c.values.z1 * (c.distance + c.values.depth1) + (n.model.dimension - 1) * c.values.z3;
     for (const BoundaryOverlap& o : n.walls.overlaps_of(i)) sum -= o.position_divergence_share();
     for (const CornerOctant& o : n.walls.octants_of(i)) sum += o.position_divergence_share();
+    if (!n.surface.empty() && n.surface[at(i)].active) {
+      const SurfaceContact& air = n.surface[at(i)];
+      sum += -air.values.z1 * (air.distance + air.values.depth1) + (n.model.dimension - 1) * air.values.z3;
+      for (const BoundaryOverlap& o : air.overlaps()) sum -= o.position_divergence_share();
+      for (const CornerOctant& o : air.octants()) sum += o.position_divergence_share();
+    }
     divergence[at(i)] = sum;
   }
   return divergence;
+}
+
+bool near_free_surface(const Neighbourhood& n, std::span<const unsigned char> free_surface, int i) {
+  if (free_surface[at(i)] != 0) return true;
+  const auto neighbours = n.neighbours.neighbours_of(i);
+  return std::any_of(neighbours.begin(), neighbours.end(), [&](int j) { return free_surface[at(j)] != 0; });
+}
+
+std::vector<double> moment_scale(const Neighbourhood& n, std::span<const double> mass,
+                                 std::span<const double> density, std::span<const unsigned char> free_surface) {
+  const double full = n.model.dimension * lattice_moment(n.kernel, n.model.spacing);
+  std::vector<double> scale = position_divergence(n, mass, density);
+  for (int i = 0; i < n.owned; ++i) {
+    const bool has_air = !n.surface.empty() && n.surface[at(i)].active;
+    scale[at(i)] = !has_air && near_free_surface(n, free_surface, i) ? 0.0
+                                                                    : std::clamp(scale[at(i)] / full, 1.0 - 0.1, 1.0 + 0.1);
+  }
+  return scale;
+}
+
+std::vector<double> smoothed_moment_scale(const Neighbourhood& n, std::span<const double> scale) {
+  require_kernel_values(n);
+  const double self_weight = n.kernel.value(0.0);
+  std::vector<double> smoothed(at(n.owned));
+  for (int i = 0; i < n.owned; ++i) {
+    double sum = 0.0, weight = 0.0;
+    if (scale[at(i)] != 0.0) {
+      sum = self_weight * scale[at(i)];
+      weight = self_weight;
+    }
+    for_each_neighbour(n, i, [&](const Pair& p) {
+      if (scale[at(p.j)] == 0.0) return;
+      sum += p.value * scale[at(p.j)];
+      weight += p.value;
+    });
+    smoothed[at(i)] = weight > 0.0 ? sum / weight : 1.0;
+  }
+  return smoothed;
 }
 
 std::vector<Eigen::Vector3d> viscous_acceleration(const Neighbourhood& n, std::span<const double> mass,
@@ -259,19 +303,25 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
   // hydrostatic lattice is in balance to the tables' accuracy everywhere. (A
   // lattice sum of about a microsecond a call: summed here, not carried along.)
   const double moment = lattice_moment(n.kernel, n.model.spacing);
-  const double calibration = 1.0 / moment;
-  const auto add_force = [&](const WallContact& c, int i, const Eigen::Vector3d& part) {
-    add_wall_force(n.wall_mesh, c, -calibration * mass[at(i)] * part, wall_force);
+  // 1 / (s M) per particle; the pairs take the mean of theirs (moment_scale()).
+  const auto calibration_of = [&](int i) {
+    return n.moment_scale.empty() ? 1.0 / moment : 1.0 / (n.moment_scale[at(i)] * moment);
   };
   for (int i = 0; i < n.owned; ++i) {
     const double rho_i = density[at(i)];
     const double p_i = pressure[at(i)] / (rho_i * rho_i);
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    const double calibration = calibration_of(i);
+    const auto add_force = [&](const WallContact& c, int k, const Eigen::Vector3d& part) {
+      add_wall_force(n.wall_mesh, c, -calibration * mass[at(k)] * part, wall_force);
+    };
+    Eigen::Vector3d pairs = Eigen::Vector3d::Zero();  // calibrated already
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();    // the walls' and the air's, to calibrate
     Eigen::Vector3d fluid_gradient = Eigen::Vector3d::Zero();  // sum_j V_j (P_j - P_i) grad_i W_ij
     for_each_neighbour(n, i, [&](const Pair& p) {
       const double rho_j = density[at(p.j)];
       const Eigen::Vector3d grad = p.gradient();
-      sum -= mass[at(p.j)] * (p_i + pressure[at(p.j)] / (rho_j * rho_j)) * grad;
+      pairs -= 0.5 * (calibration + calibration_of(p.j)) * mass[at(p.j)] *
+               (p_i + pressure[at(p.j)] / (rho_j * rho_j)) * grad;
       fluid_gradient += mass[at(p.j)] / rho_j * (pressure[at(p.j)] - pressure[at(i)]) * grad;
     });
     const auto contacts = n.walls.of(i);
@@ -358,7 +408,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
         sum += part;
         add_force(contacts[at(o.first)], i, part);
       }
-    acceleration[at(i)] = calibration * sum;
+    acceleration[at(i)] = pairs + calibration * sum;
   }
   return acceleration;
 }
