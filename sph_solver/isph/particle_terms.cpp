@@ -303,7 +303,7 @@ std::vector<Eigen::Vector3d> pressure_acceleration(const Neighbourhood& n, std::
   // hydrostatic lattice is in balance to the tables' accuracy everywhere. (A
   // lattice sum of about a microsecond a call: summed here, not carried along.)
   const double moment = lattice_moment(n.kernel, n.model.spacing);
-  // 1 / (s M) per particle; the pairs take the mean of theirs (moment_scale()).
+  // 1 / (s M) per particle; the pairs take the mean of theirs (moment_scale(), particle_terms.hpp).
   const auto calibration_of = [&](int i) {
     return n.moment_scale.empty() ? 1.0 / moment : 1.0 / (n.moment_scale[at(i)] * moment);
   };

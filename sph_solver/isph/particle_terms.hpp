@@ -42,8 +42,8 @@ struct Neighbourhood {
   /// The air beyond the free surface for the owned particles (free_surface.hpp);
   /// empty: no free-surface terms (a liquid that fills its support everywhere).
   std::span<const SurfaceContact> surface = {};
-  /// Each particle's moment against the lattice's (moment_scale()), owned then
-  /// ghosts; empty: the lattice's, 1 for all.
+  /// Each particle's moment against the lattice's, smoothed (smoothed_moment_scale()),
+  /// owned then ghosts; empty: the lattice's, 1 for all.
   std::span<const double> moment_scale = {};
 };
 
