@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Validation: liquid at rest in a tank (VALIDATION.md, "Hydrostatic column").
 
-Usage: check_hydrostatic.py --launcher "mpiexec -n 2" [--settled-after T] SPH_SOLVER CASE.yaml [--set k=v ...]
+Usage: check_hydrostatic.py --launcher "mpiexec -n 2" [--settled-after T] [--known-unmet settling|particles ...]
+                            SPH_SOLVER CASE.yaml [--set k=v ...]
 
 Runs the case and checks, at every sample of the settled window t >= T (default:
 the second half of the run) — not time averages —
@@ -16,7 +17,9 @@ the second half of the run) — not time averages —
   - no particle lost through a wall or out of the tank, and none put back in
     front of a wall it had passed (wall_crossings.hpp: at rest the pressure alone
     must hold the liquid off the walls).
-The tolerances are VALIDATION.md's.
+The tolerances are VALIDATION.md's. A criterion named by --known-unmet (a case
+that does not meet it yet, said in its README) is measured and printed but not
+asserted, and the output says so; the others still fail the test.
 """
 import argparse
 import math
@@ -51,10 +54,13 @@ def main():
     parser.add_argument("--settled-after", type=float, default=None,
                         help="start of the settled window (s); default half the run")
     parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--known-unmet", action="append", default=[], choices=["settling", "particles"],
+                        help="measure and print this criterion, but do not assert it")
     parser.add_argument("solver")
     parser.add_argument("case")
     args = parser.parse_args()
     failures = []
+    unmet = []  # known not to be met (--known-unmet): printed, not asserted
     with tempfile.TemporaryDirectory() as scratch:
         folder = run_solver(args.launcher, args.solver, args.case, f"{scratch}/run", args.set)
         # The case as the solver read it, overrides and defaults applied.
@@ -71,7 +77,8 @@ def main():
         limit = 1e-3 * math.sqrt(g * surface)
         print(f"max |v|: largest {speed.max():.2e} m/s, last {speed[-1]:.2e} m/s (limit 1e-3 sqrt(g H) = {limit:.2e})")
         if speed.max() >= limit:
-            failures.append(f"max |v| {speed.max():.2e} m/s in the settled window (limit {limit:.2e})")
+            message = f"max |v| {speed.max():.2e} m/s in the settled window (limit {limit:.2e})"
+            (unmet if "settling" in args.known_unmet else failures).append(message)
 
         for record in fluid.get("probes", []):
             if record["quantity"] != "pressure":
@@ -90,9 +97,11 @@ def main():
         depth = surface - positions[:, dim - 1]
         deep = depth > 2.0 * spacing
         error = np.abs(pressures[deep] / (rho * g * depth[deep]) - 1.0)
-        print(f"last snapshot: {deep.sum()} particles deeper than 2 L0, pressure error up to {100 * error.max():.3f} %")
+        print(f"last snapshot: {deep.sum()} particles deeper than 2 L0, pressure error up to {100 * error.max():.3f} %, "
+              f"{100 * (error > 0.01).mean():.0f} % of them beyond 1 %")
         if error.max() > 0.01:
-            failures.append(f"a particle's pressure off by {100 * error.max():.2f} % (tolerance 1 %)")
+            message = f"a particle's pressure off by {100 * error.max():.2f} % (tolerance 1 %)"
+            (unmet if "particles" in args.known_unmet else failures).append(message)
 
         weight = liquid_mass(folder) * g  # per metre of depth in 2D, as the forces
         up = "force_y" if dim == 2 else "force_z"
@@ -115,6 +124,8 @@ def main():
         print(f"particles put back in front of a wall: {returned}")
         if returned != 0:
             failures.append(f"{returned} particle-steps ended behind a wall and were put back")
+    if unmet:
+        print("NOT MET, NOT ASSERTED (--known-unmet):\n  " + "\n  ".join(unmet))
     if failures:
         print("FAIL:\n  " + "\n  ".join(failures))
         return 1
