@@ -82,8 +82,9 @@ struct Neighbourhood {
 /// complete) the moment says nothing about the gradient's scale; nor does it
 /// where the surface cuts a support the air does not complete (the air stops at
 /// two layers: the third layer of a 2D lattice, whose quintic support of 3.6 L0
-/// reaches 1.1 L0 past the surface, misses 0.2 % of its moment to it, and taken
-/// for disorder that left the 2D tank at rest 0.2 % of g off balance there).
+/// reaches 1.1 L0 past the surface, misses 0.2 % of its moment to it; taken for
+/// disorder, that raised the 2D tank at rest's largest speed to 1.3e-3 m/s, with
+/// the moments unsmoothed: 5.3e-4 with this rule).
 [[nodiscard]] std::vector<double> moment_scale(const Neighbourhood& n, std::span<const double> mass,
                                                std::span<const double> density,
                                                std::span<const unsigned char> free_surface);
