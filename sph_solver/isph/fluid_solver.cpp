@@ -260,11 +260,15 @@ std::vector<Eigen::Vector3d> FluidSolver::present_wall_forces(const Eigen::Vecto
   auto pressure = particles_.pressure;
   halo_.exchange(pressure);
   const Configuration now = configuration(*this, with_ghosts(halo_, particles_.position), owned);
-  const Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
+  Neighbourhood n{kernel_, model_, now.position, now.neighbours, now.walls, walls_.mesh(), owned};
   // Read against the lattice as in a step (completed_density()); no air here.
+  const auto kernel_sum = with_ghosts(halo_, kernel_density(n, mass));
   const auto density = with_ghosts(
-      halo_, density_against_lattice(kernel_density(n, mass), model_.density * walls_.table().lattice_share(),
-                                     model_.density));
+      halo_, density_against_lattice(kernel_sum, model_.density * walls_.table().lattice_share(), model_.density));
+  // The moments as a step divides by (without the air, the surface's particles
+  // take their neighbours').
+  const auto scale = moment_scales(n, mass, density, with_ghosts(halo_, detect_free_surface(n, mass, kernel_sum)));
+  n.moment_scale = scale;
   // The walls' Neumann pressure gradient rho (v* - v_w) . n / dt of the liquid
   // at rest, v* = dt F on resting walls: rho F . n whatever dt.
   const double dt = 1.0;
