@@ -65,8 +65,10 @@
 // changes by H C3 / 2 and around it by 3 H C3 / 2. (Taking H C3 both ways made
 // the vertical pressure gradient beside a cylinder's wall too large: in
 // cases/hydrostatic_3d the ring next to the wall rose 0.016 g faster than the
-// next ring at the first step, and in a damped settling run a steady roll went
-// up the wall, inwards at mid-depth and out along the floor.)
+// next ring at the first step (0.015 g with the pressure gradient divided by
+// the particles' own moments; -0.0001 g with the deviator), and in a damped
+// settling run a steady roll went up the wall, inwards at mid-depth and out
+// along the floor.)
 // Only curvature the kernel can resolve is kept: at vertices with |H| × support > 0.5
 // (sharp edges and corners, which the per-wall contacts already handle) each
 // triangle takes its own wall's curvature from the neighbouring vertices

@@ -557,8 +557,9 @@ TEST_CASE("wall contact: a cylinder's sliver bends the tangential moment across 
   // axis the cylinder's sliver weighs 3/2 H C3, along it H C3 / 2 (for a radial
   // kernel factor, the 4th moments over the plane are 3:1); the sphere's H C3 both
   // ways. Tolerance 2e-3 as above (the next order, d / rho, and the quadrature;
-  // measured at most 8.5e-4, the sphere at 1.7 L0; the cylinder's 7.1e-4). H C3 in both directions, the isotropic bending,
-  // misses the cylinder's by -33 % across its axis and +100 % along it.
+  // measured at most 8.5e-4, the sphere at 1.7 L0; the cylinder's 7.1e-4). H C3
+  // in both directions, the isotropic bending, misses the cylinder's by -33 %
+  // across its axis and +100 % along it.
   for (KernelType type : {KernelType::quartic_spline, KernelType::wendland_c2}) {
     const Kernel kernel(type, 3, (type == KernelType::wendland_c2 ? 1.5 : 1.2) * spacing);
     const double rho = 1000.0 * kernel.support_radius();
