@@ -12,8 +12,11 @@ std::vector<KeySpec> fluid_keys() {
           .default_is("auto"),
       real_key("fluid.spacing", "Initial particle spacing (L0); also the spacing of the wall kernel tables.")
           .unit_is("m").is_required().above(0),
-      real_key("fluid.smoothing_length_ratio", "Smoothing length h as a multiple of the particle spacing.")
-          .default_is("1.2").above(0.5).at_most(3),
+      real_key("fluid.smoothing_length_ratio",
+               "Smoothing length h as a multiple of the particle spacing; when not given, the kernel's: "
+               "1.2 for the quintic spline, 1.1 for the quartic spline (at 1.2 it is in its pairing "
+               "instability), 1.5 for Wendland C2 (the least at which it sums to 1 on the lattice).")
+          .above(0.5).at_most(3),
       real_key("fluid.density", "Reference density of the liquid.").unit_is("kg/m^3").is_required().above(0),
       real_key("fluid.viscosity", "Dynamic viscosity of the liquid.").unit_is("Pa s").is_required().at_least(0),
       real_key("fluid.gravity", "Magnitude of gravity (acts along -y in 2D, -z in 3D).")

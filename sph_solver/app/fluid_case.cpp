@@ -51,8 +51,10 @@ FluidModel read_model(const CaseConfig& config) {
     throw config.error_at("fluid.kernel", e.what());
   }
   m.spacing = config.real("fluid.spacing");
-  m.smoothing_length = config.real("fluid.smoothing_length_ratio") * m.spacing;
-  if (m.kernel == KernelType::wendland_c2 && config.real("fluid.smoothing_length_ratio") < 1.5)
+  const double ratio = config.has("fluid.smoothing_length_ratio") ? config.real("fluid.smoothing_length_ratio")
+                                                                  : default_smoothing_length_ratio(m.kernel);
+  m.smoothing_length = ratio * m.spacing;
+  if (m.kernel == KernelType::wendland_c2 && ratio < 1.5)
     throw config.error_at("fluid.smoothing_length_ratio",
                           "the Wendland C2 kernel needs h >= 1.5 L0 to sum to 1 on the particle lattice");
   m.density = config.real("fluid.density");

@@ -123,6 +123,15 @@ KernelType default_kernel(int dimension) {
   return dimension == 2 ? KernelType::quintic_spline : KernelType::quartic_spline;
 }
 
+double default_smoothing_length_ratio(KernelType type) {
+  switch (type) {
+    case KernelType::quintic_spline: return 1.2;
+    case KernelType::quartic_spline: return 1.1;
+    case KernelType::wendland_c2: return 1.5;
+  }
+  throw std::invalid_argument("default_smoothing_length_ratio: unknown kernel type");
+}
+
 KernelType parse_kernel_type(std::string_view word, int dimension) {
   require_dimension(dimension);
   if (word == "auto") return default_kernel(dimension);

@@ -34,6 +34,18 @@ enum class KernelType { quintic_spline, quartic_spline, wendland_c2 };
 /// Throws std::invalid_argument unless dimension is 2 or 3.
 [[nodiscard]] KernelType default_kernel(int dimension);
 
+/// h / L0 for a case that names none (fluid.smoothing_length_ratio):
+/// - quintic spline 1.2 (support 3.6 L0);
+/// - quartic spline 1.1 (support 2.75 L0, about 87 neighbours in 3D). At 1.2 (113
+///   neighbours) the M5 spline is in its pairing instability (Dehnen & Aly 2012,
+///   MNRAS 425:1068): measured in 3D (cases/hydrostatic_3d/README.md, "The
+///   quartic spline's smoothing length"), a liquid at rest on its lattice in a
+///   box deforms from about 2 s (largest speed 1.6e-3 m/s at 3 s, growing
+///   fivefold every 0.5 s; 1.9e-5 m/s with 1.1), and the disordered liquid
+///   of a cylinder keeps twice the kinetic energy;
+/// - Wendland C2 1.5, the least at which it sums to 1 on the lattice.
+[[nodiscard]] double default_smoothing_length_ratio(KernelType type);
+
 /// The case-file word (fluid.kernel): "quintic_spline", "quartic_spline",
 /// "wendland_c2", or "auto" for default_kernel(dimension).
 /// Throws std::invalid_argument for any other word or dimension.

@@ -2,7 +2,8 @@
 // a standing wave gives every particle the mode's velocity for the tank's filled
 // depth (the top of the highest layer, 0.70 m for a level of 0.70 m at L0 = 0.02),
 // and the cases it does not describe are refused with the key and a reason; a case
-// without the optional solver keys gets FluidModel's defaults.
+// without the optional solver keys gets FluidModel's defaults, and its kernel's
+// smoothing length when it names none.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -77,4 +78,18 @@ TEST_CASE("a case without the solver's optional keys gets FluidModel's defaults"
   CHECK(read_model.shifting == defaults.shifting);
   CHECK(read_model.shifting_coefficient == defaults.shifting_coefficient);
   CHECK(read_model.close_pair_distance == defaults.close_pair_distance);
+}
+
+// fluid.smoothing_length_ratio, when not given, is the kernel's
+// (default_smoothing_length_ratio(), kernel.hpp): the quartic spline's 1.1 keeps it
+// out of its pairing instability, Wendland C2's 1.5 is the least that sums to 1.
+TEST_CASE("a case without a smoothing length takes its kernel's", "[fluid_case]") {
+  const double spacing = 0.02;
+  CHECK(read(sloshing_case).model.smoothing_length == Approx(1.2 * spacing).epsilon(1e-15));
+  CHECK(read(sloshing_case, {{"fluid.kernel", "quartic_spline", ""}}).model.smoothing_length ==
+        Approx(1.1 * spacing).epsilon(1e-15));
+  CHECK(read(sloshing_case, {{"fluid.kernel", "wendland_c2", ""}}).model.smoothing_length ==
+        Approx(1.5 * spacing).epsilon(1e-15));
+  CHECK(read(sloshing_case, {{"fluid.kernel", "quartic_spline", ""}, {"fluid.smoothing_length_ratio", "1.3", ""}})
+            .model.smoothing_length == Approx(1.3 * spacing).epsilon(1e-15));
 }
