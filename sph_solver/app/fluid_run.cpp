@@ -451,6 +451,9 @@ nlohmann::json run_fluid(ProgramContext& context, FluidCase c, const GroundMotio
   const auto& force = outputs.last_total_force();
   nlohmann::json results{{"fluid",
            {{"particles", solver.global_particle_count()},
+            // The kernel and h the run used: the case file may name neither (kernel.hpp's defaults).
+            {"kernel", kernel_name(c.model.kernel)},
+            {"smoothing_length_m", c.model.smoothing_length},
             {"steps", stats.steps},  // every step computed, those of repeated implicit windows too
             {"end_time_s", t},
             {"time_step_s", {{"min", stats.min_dt}, {"max", stats.max_dt}, {"mean", stats.simulated / static_cast<double>(std::max<long long>(stats.steps, 1))}}},

@@ -69,7 +69,9 @@ def main():
         surface = math.ceil(fluid["fill"]["level"] / spacing - 1e-9) * spacing
         end = summary(folder)["fluid"]["end_time_s"]
         settled = 0.5 * end if args.settled_after is None else args.settled_after
-        print(f"settled window: {settled:g} s to {end:g} s")
+        # The kernel and h as run (the case file may name neither: their defaults).
+        kernel, h = summary(folder)["fluid"]["kernel"], summary(folder)["fluid"]["smoothing_length_m"]
+        print(f"kernel {kernel}, h = {h / spacing:.3g} L0; settled window: {settled:g} s to {end:g} s")
 
         header, rows = probe(folder, "fluid")
         window = rows[rows[:, 0] >= settled - 1e-9]
