@@ -47,7 +47,6 @@ inline Particles fill_water(const FluidModel& model, const TriangleMesh& walls, 
   return fill_tank(walls, spec);
 }
 
-/// cases/hydrostatic_3d's liquid: oil (quartic spline, L0 = 0.05 m, h = 1.2 L0).
 /// The walls' box widened by 2 m: a FluidSolver's domain that no particle leaves.
 inline Eigen::AlignedBox3d domain_around(const TriangleMesh& walls) {
   Eigen::AlignedBox3d domain = walls.bounding_box();
@@ -56,12 +55,13 @@ inline Eigen::AlignedBox3d domain_around(const TriangleMesh& walls) {
   return domain;
 }
 
+/// cases/hydrostatic_3d's liquid: oil (quartic spline, L0 = 0.05 m, h its default 1.1 L0).
 inline FluidModel oil_3d() {
   FluidModel m = water();
   m.dimension = 3;
   m.kernel = KernelType::quartic_spline;
   m.spacing = 0.05;
-  m.smoothing_length = 1.2 * m.spacing;
+  m.smoothing_length = default_smoothing_length_ratio(m.kernel) * m.spacing;
   m.density = 860.0;
   return m;
 }
