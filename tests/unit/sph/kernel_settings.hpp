@@ -1,6 +1,6 @@
 #pragma once
 // The kernel settings the kernel-table tests sweep: every kernel in both
-// dimensions at the usual ratios h / L0 (a superset of the paper's quintic 2D /
+// dimensions at the usual ratios h / L0 and each kernel's default (a superset of the paper's quintic 2D /
 // quartic 3D; the lattice identities hold whatever the kernel quality).
 #include <vector>
 
@@ -20,6 +20,10 @@ inline std::vector<KernelSetting> kernel_settings() {
                                sph::KernelType::wendland_c2})
     for (int dimension : {2, 3})
       for (double h_over_dx : {1.2, 1.5}) result.push_back({type, dimension, h_over_dx});
+  // The quartic spline's default 1.1 (kernel.hpp; the others' are 1.2 and 1.5).
+  for (int dimension : {2, 3})
+    result.push_back({sph::KernelType::quartic_spline, dimension,
+                      sph::default_smoothing_length_ratio(sph::KernelType::quartic_spline)});
   return result;
 }
 
