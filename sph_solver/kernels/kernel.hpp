@@ -36,7 +36,8 @@ enum class KernelType { quintic_spline, quartic_spline, wendland_c2 };
 
 /// h / L0 for a case that names none (fluid.smoothing_length_ratio):
 /// - quintic spline 1.2 (support 3.6 L0; at 1.1 the 2D tank at rest's lattice
-///   does not hold: 0.12 m/s within 6 s against 2.6e-4 at 1.2, the same README);
+///   does not hold: 0.12 m/s within 6 s against 2.6e-4 at 1.2,
+///   cases/hydrostatic_3d/README.md, "The quartic spline's smoothing length");
 /// - quartic spline 1.1 (support 2.75 L0, about 87 neighbours in 3D). At 1.2 (113
 ///   neighbours) the M5 spline is in its pairing instability (Dehnen & Aly 2012,
 ///   MNRAS 425:1068): measured in 3D (cases/hydrostatic_3d/README.md, "The

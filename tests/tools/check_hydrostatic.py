@@ -67,10 +67,11 @@ def main():
         fluid = yaml.safe_load((folder / "case.resolved.yaml").read_text())["fluid"]
         rho, g, spacing, dim = fluid["density"], fluid["gravity"], fluid["spacing"], fluid["dimension"]
         surface = math.ceil(fluid["fill"]["level"] / spacing - 1e-9) * spacing
-        end = summary(folder)["fluid"]["end_time_s"]
+        run = summary(folder)["fluid"]
+        end = run["end_time_s"]
         settled = 0.5 * end if args.settled_after is None else args.settled_after
         # The kernel and h as run (the case file may name neither: their defaults).
-        kernel, h = summary(folder)["fluid"]["kernel"], summary(folder)["fluid"]["smoothing_length_m"]
+        kernel, h = run["kernel"], run["smoothing_length_m"]
         print(f"kernel {kernel}, h = {h / spacing:.3g} L0; settled window: {settled:g} s to {end:g} s")
 
         header, rows = probe(folder, "fluid")
@@ -122,7 +123,7 @@ def main():
             failures.append(f"{int(lost)} particles left the tank")
         # A liquid at rest keeps off the walls by its pressure alone: none of its
         # particles may need putting back in front of a wall (wall_crossings.hpp).
-        returned = summary(folder)["fluid"]["wall_returned_particles"]
+        returned = run["wall_returned_particles"]
         print(f"particles put back in front of a wall: {returned}")
         if returned != 0:
             failures.append(f"{returned} particle-steps ended behind a wall and were put back")

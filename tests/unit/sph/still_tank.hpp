@@ -111,6 +111,10 @@ struct StillLiquid3d {
   const std::vector<SurfaceContact> air = surface_contacts(view({}), particles.mass, density, walls);
   const std::vector<double> completed =
       completed_density(density, air, model.density * walls.table().lattice_share(), model.density);
+  /// The kernel sums read against the lattice without the air (as a step reads
+  /// them away from the surface).
+  const std::vector<double> against_lattice =
+      density_against_lattice(density, model.density * walls.table().lattice_share(), model.density);
 
   StillLiquid3d(const FluidModel& m, const TriangleMesh& mesh, const Particles& p)
       : model(m), walls(mesh, m, kernel), particles(p) {}

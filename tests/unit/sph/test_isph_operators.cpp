@@ -86,10 +86,8 @@ TEST_CASE("hydrostatic pressure balances gravity in a 3D box: inside, at the fac
   // The kernel sums read against the lattice's, as the solver reads them: the raw
   // sums (the quartic spline's lattice sum is 1.00002 at h = 1.2 L0, 0.9992 at
   // 1.1 L0) would put 2 (1 - sum) of g into every particle's balance.
-  const auto density =
-      density_against_lattice(liquid.density, model.density * liquid.walls.table().lattice_share(), model.density);
-  const auto acceleration =
-      pressure_acceleration(n, particles.mass, density, particles.pressure, v_star, a_star, dt, wall_force);
+  const auto acceleration = pressure_acceleration(n, particles.mass, liquid.against_lattice, particles.pressure,
+                                                  v_star, a_star, dt, wall_force);
   // Worst |a_p + g| / g by the number of walls within the support: 0 inside, 1 at a
   // face, 2 along an edge, 3 in a corner.
   std::array<double, 4> worst{};

@@ -49,13 +49,6 @@ Particles moved_liquid(const FluidModel& model, const TriangleMesh& box, double 
   return particles;
 }
 
-/// The kernel sums read against the lattice, no air (as a step reads them away
-/// from the surface).
-std::vector<double> densities_without_air(const StillLiquid3d& liquid) {
-  return density_against_lattice(liquid.density, liquid.model.density * liquid.walls.table().lattice_share(),
-                                 liquid.model.density);
-}
-
 }  // namespace
 
 TEST_CASE("moment scale: the lattice's moment on the lattice, inside, beside walls and under the air", "[isph]") {
@@ -128,7 +121,7 @@ TEST_CASE("moment scale: an FCC block's pressure gradient is divided by its own 
         }
   const StillLiquid3d liquid(model, box, particles);
   Neighbourhood n = liquid.view({});
-  const auto density = densities_without_air(liquid);
+  const auto& density = liquid.against_lattice;
   // No surface: the block's edges are not at issue.
   const std::vector<unsigned char> no_surface(particles.size(), 0);
   const auto scale = moment_scale(n, particles.mass, density, no_surface);
@@ -177,7 +170,7 @@ TEST_CASE("moment scale: the pairs' forces stay opposite and equal on a disorder
   const Particles particles = moved_liquid(model, box, 0.1);
   const StillLiquid3d liquid(model, box, particles);
   Neighbourhood n = liquid.view({});  // no air: only the walls act from outside
-  const auto density = densities_without_air(liquid);
+  const auto& density = liquid.against_lattice;
   const std::vector<unsigned char> no_surface(particles.size(), 0);
   const auto scale = moment_scale(n, particles.mass, density, no_surface);
   n.moment_scale = scale;
