@@ -34,6 +34,27 @@ WallKernelValues curved(WallKernelValues v, double mean_curvature) {
   return v;
 }
 
+/// The order of a particle's wall hits: nearest first, ties by triangle index (a
+/// strict total order: a particle meets each triangle once, so any sort gives the
+/// same sequence).
+bool nearer(const WallHit& a, const WallHit& b) {
+  return a.closest.squared_distance < b.closest.squared_distance ||
+         (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);
+}
+
+/// Sorts hits that are nearly in order already (a candidate list, sorted where it
+/// was searched, whose points then moved by a fraction of the cutoff): an
+/// insertion sort moves each hit only past those it overtook.
+void sort_nearly_sorted(std::vector<WallHit>& hits) {
+  for (std::size_t k = 1; k < hits.size(); ++k) {
+    if (!nearer(hits[k], hits[k - 1])) continue;
+    const WallHit hit = hits[k];
+    std::size_t m = k;
+    for (; m > 0 && nearer(hit, hits[m - 1]); --m) hits[m] = hits[m - 1];
+    hits[m] = hit;
+  }
+}
+
 /// The smooth wall's normal at barycentric w of triangle t; `plane` (the
 /// triangle's own, as the contact uses it) where all three corners have it.
 Eigen::Vector3d smooth_normal(const WallCornerValues& corners, int t, const Eigen::Vector3d& w,
@@ -125,6 +146,9 @@ WallCandidates find_wall_candidates(const WallModel& walls, std::span<const Eige
         if (const auto closest = closest_point_within(x, mesh, t, radius_squared))
           result.hits.push_back(WallHit{t, *closest});
       }
+      // In find_wall_contacts' order: at the point searched its hits within the
+      // cutoff are then in order as they are, and near it nearly.
+      std::sort(result.hits.begin() + result.offsets.back(), result.hits.end(), nearer);
       result.offsets.push_back(static_cast<int>(result.hits.size()));
     }
     first = end;
@@ -156,7 +180,7 @@ struct WallSeen {
 double taper(double s) { return s >= 1.0 ? 0.0 : (1.0 - s) * (1.0 - s) * (1.0 + 2.0 * s); }
 
 /// The contact of one wall from its hits, blended as find_wall_contacts describes.
-WallContact blended_contact(const WallModel& walls, const std::vector<WallHit>& hits,
+WallContact blended_contact(const WallModel& walls, std::span<const WallHit> hits,
                             const std::vector<std::pair<Eigen::Vector3d, double>>& planes,
                             const std::vector<char>& from_behind, const WallSeen& wall, int dimension, double band) {
   const auto distance = [&hits, &wall](int f) {
@@ -231,33 +255,36 @@ WallContacts find_wall_contacts(const WallModel& walls, std::span<const Eigen::V
   result.overlap_offsets.reserve(positions.size() + 1);
   result.octant_offsets.reserve(positions.size() + 1);
   const double blend_band = wall_foot_blend_band * walls.table().spacing();
-  std::vector<WallHit> hits;
+  std::vector<WallHit> found;  // where the hits are not the candidates' as they are
   std::vector<std::pair<Eigen::Vector3d, double>> planes;
   std::vector<char> from_behind;
   std::vector<WallSeen> walls_seen;
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Eigen::Vector3d& x = positions[i];
-    hits.clear();
+    std::span<const WallHit> hits;  // nearest first
+    found.clear();
     if (candidates == nullptr) {
-      walls.index().within(x, cutoff, [&hits](const WallHit& hit) { hits.push_back(hit); });
+      walls.index().within(x, cutoff, [&found](const WallHit& hit) { found.push_back(hit); });
+      std::sort(found.begin(), found.end(), nearer);
+      hits = found;
+    } else if (x == candidates->searched[i]) {
+      // The point searched: its candidates within the cutoff, the first of its
+      // sorted list, with the closest points found then.
+      const auto first = candidates->hits.begin() + candidates->offsets[i];
+      const auto end = candidates->hits.begin() + candidates->offsets[i + 1];
+      hits = std::span<const WallHit>(
+          first, std::find_if(first, end, [cutoff_squared](const WallHit& h) {
+            return !(h.closest.squared_distance < cutoff_squared);
+          }));
     } else {
-      // The index's own test (TriangleIndex::visit_within), on the candidates only;
-      // where the point is still the one searched, on the closest points found then.
-      const bool unmoved = x == candidates->searched[i];
+      // The index's own test (TriangleIndex::visit_within), on the candidates only.
       for (int k = candidates->offsets[i]; k < candidates->offsets[i + 1]; ++k) {
-        const WallHit& candidate = candidates->hits[static_cast<std::size_t>(k)];
-        if (unmoved) {
-          if (candidate.closest.squared_distance < cutoff_squared) hits.push_back(candidate);
-          continue;
-        }
-        if (const auto closest = closest_point_within(x, mesh, candidate.triangle, cutoff_squared))
-          hits.push_back(WallHit{candidate.triangle, *closest});
+        const int t = candidates->hits[static_cast<std::size_t>(k)].triangle;
+        if (const auto closest = closest_point_within(x, mesh, t, cutoff_squared)) found.push_back(WallHit{t, *closest});
       }
+      sort_nearly_sorted(found);  // the candidates' order, mended where the point's move changed it
+      hits = found;
     }
-    std::sort(hits.begin(), hits.end(), [](const WallHit& a, const WallHit& b) {
-      return a.closest.squared_distance < b.closest.squared_distance ||
-             (a.closest.squared_distance == b.closest.squared_distance && a.triangle < b.triangle);
-    });
     // Each hit's plane normal (zero: not a wall of the plane) and the particle's height over it.
     // A two-sided triangle seen from behind, the particle right behind it (not
     // beside it: its sheet's free edge, or the rest of the sheet), turns round.

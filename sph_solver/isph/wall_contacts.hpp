@@ -203,7 +203,9 @@ struct WallContacts {
 };
 
 /// The triangles within the wall tables' cutoff + skin of each of a set of points,
-/// in CSR form, with their closest points to the point searched: a step's two
+/// in CSR form, with their closest points to the point searched (each point's
+/// nearest first, ties by triangle index, the order find_wall_contacts keeps them
+/// in, so that it only has to mend the order where a point moved): a step's two
 /// searches (at x^n and at x~, fluid_solver.hpp) take their contacts from these
 /// without the spatial index, as long as no point moved by more than the skin
 /// and the wall did not move. A point that has not moved at all (x^n) takes the
