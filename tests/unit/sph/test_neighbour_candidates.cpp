@@ -128,6 +128,17 @@ TEST_CASE("wall candidates: the contacts of moved particles equal a search of th
     after.push_back(x + move * uniform(engine) * random_direction(engine, 3));
   }
   const WallCandidates candidates = find_wall_candidates(walls, before, move);
+  // Kept nearest first, ties by triangle (what find_wall_contacts takes as is at
+  // the points searched, and mends where they moved).
+  int out_of_order = 0;
+  for (std::size_t i = 0; i < before.size(); ++i)
+    for (int k = candidates.offsets[i] + 1; k < candidates.offsets[i + 1]; ++k) {
+      const WallHit& a = candidates.hits[static_cast<std::size_t>(k - 1)];
+      const WallHit& b = candidates.hits[static_cast<std::size_t>(k)];
+      out_of_order += a.closest.squared_distance > b.closest.squared_distance ||
+                      (a.closest.squared_distance == b.closest.squared_distance && a.triangle >= b.triangle);
+    }
+  CHECK(out_of_order == 0);
   int contacts = 0;
   for (const auto* points : {&before, &after}) {
     const WallContacts expected = find_wall_contacts(walls, *points, 3);
