@@ -2,14 +2,17 @@
 """Validation: liquid at rest in a tank (VALIDATION.md, "Hydrostatic column").
 
 Usage: check_hydrostatic.py --launcher "mpiexec -n 2" [--settled-after T] [--known-unmet settling|particles ...]
-                            SPH_SOLVER CASE.yaml [--set k=v ...]
+                            [--level-probe NAME] SPH_SOLVER CASE.yaml [--set k=v ...]
 
 Runs the case and checks, at every sample of the settled window t >= T (default:
 the second half of the run) — not time averages —
   - max |v| (the largest particle speed of each sampled step) below
     1e-3 sqrt(g H): the liquid settles and stays settled;
   - every pressure probe within 1 % of rho g (H - y), H the top of the highest
-    particle layer (the fill level rounded to whole layers);
+    particle layer (the fill level rounded to whole layers) — or, with
+    --level-probe, the mean of that wave-height probe over the settled window:
+    for a tank whose filling leaves gaps at a curved wall, into which the
+    liquid settles below the filled level (the level's drop is printed);
   - in the last snapshot, the pressure of every particle deeper than two layers
     (2 L0) within 1 % of rho g (H - y) ("below the first two surface layers");
   - the vertical wall force within 0.5 % of the liquid's weight and the lateral
@@ -56,6 +59,8 @@ def main():
     parser.add_argument("--set", action="append", default=[])
     parser.add_argument("--known-unmet", action="append", default=[], choices=["settling", "particles"],
                         help="measure and print this criterion, but do not assert it")
+    parser.add_argument("--level-probe", default=None,
+                        help="wave-height probe whose settled mean is the free surface H (default: the filled level)")
     parser.add_argument("solver")
     parser.add_argument("case")
     args = parser.parse_args()
@@ -73,6 +78,12 @@ def main():
         # The kernel and h as run (the case file may name neither: their defaults).
         kernel, h = run["kernel"], run["smoothing_length_m"]
         print(f"kernel {kernel}, h = {h / spacing:.3g} L0; settled window: {settled:g} s to {end:g} s")
+
+        if args.level_probe is not None:
+            _, level_rows = probe(folder, args.level_probe)
+            filled, surface = surface, level_rows[level_rows[:, 0] >= settled - 1e-9, 1].mean()
+            print(f"free surface H = {surface:.4f} m from probe {args.level_probe} "
+                  f"({1e3 * (surface - filled):+.1f} mm from the filled level {filled:g} m)")
 
         header, rows = probe(folder, "fluid")
         window = rows[rows[:, 0] >= settled - 1e-9]
