@@ -1,5 +1,6 @@
 #include "sph_solver/walls/wall_corner_values.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -107,6 +108,18 @@ double WallCornerValues::smooth_depth(const TriangleMesh& mesh, int t, const Eig
     depth -= 0.5 * w[i] * w[j] * (n[at(j)] - n[at(i)]).dot(mesh.corner(t, j) - mesh.corner(t, i));
   }
   return depth;
+}
+
+double WallCornerValues::largest_smooth_depth(const TriangleMesh& mesh) const {
+  constexpr int steps = 6;
+  double largest = 0.0;
+  for (int t = 0; t < static_cast<int>(mesh.triangle_count()); ++t)
+    for (int a = 0; a <= steps; ++a)
+      for (int b = 0; a + b <= steps; ++b) {
+        const Eigen::Vector3d w(a, b, steps - a - b);
+        largest = std::max(largest, std::abs(smooth_depth(mesh, t, w / steps)));
+      }
+  return largest;
 }
 
 }  // namespace tankfsi::sph

@@ -57,6 +57,12 @@ class WallCornerValues {
   /// this is (R^2 - r^2) / (2R), R - r to second order; on a sphere the same to
   /// the corner normals' accuracy; 0 on a flat wall.
   [[nodiscard]] double smooth_depth(const TriangleMesh& mesh, int t, const Eigen::Vector3d& w) const;
+  /// The largest |smooth_depth()| of any triangle of `mesh` (m): how far the facets
+  /// lie from the smooth wall they stand for (on a faceted cylinder the sagitta
+  /// c^2 / (8R) of its chords c). Each triangle is sampled on the barycentric grid
+  /// of step 1/6, which holds its edges' midpoints and its centroid, where the
+  /// quadratic has its extremes on a cylinder and on a sphere.
+  [[nodiscard]] double largest_smooth_depth(const TriangleMesh& mesh) const;
   /// Mean curvature of triangle t's wall at barycentric weights w (1/m).
   [[nodiscard]] double curvature_at(int t, const Eigen::Vector3d& w) const {
     const auto& h = curvature_[at(t)];

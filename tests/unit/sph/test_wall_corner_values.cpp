@@ -172,6 +172,27 @@ TEST_CASE("the smooth wall behind the facets: a faceted cylinder's sagitta, a sp
   }
 }
 
+// The largest gap between the facets and their smooth wall, which sph_solver
+// reports and warns of (fluid_run.cpp): on a faceted cylinder of n segments the
+// depth (R^2 - r^2) / (2R) (above) at a chord's middle, r = R cos(pi / n), is
+// R sin^2(pi / n) / 2 = c^2 / (8R) for the chord c = 2 R sin(pi / n); a box's is 0.
+TEST_CASE("the largest gap between facets and their smooth wall: a cylinder's chord sagitta, none in a box",
+          "[wall_geometry]") {
+  for (const int segments : {12, 32, 100}) {
+    const double radius = 0.8;
+    const TriangleMesh tank = make_cylindrical_tank(radius, 1.0, segments, 4, 3);
+    WallCornerValues corners(tank);
+    corners.update(tank, vertex_mean_curvature(tank));
+    const double sagitta = radius * std::pow(std::sin(std::numbers::pi / segments), 2) / 2.0;
+    INFO(segments << " segments");
+    CHECK(corners.largest_smooth_depth(tank) == Approx(sagitta).epsilon(1e-12));
+  }
+  const TriangleMesh box = make_box(Vector3d(0.0, 0.0, 0.0), Vector3d(1.0, 1.0, 0.6), NormalSide::inward);
+  WallCornerValues corners(box);
+  corners.update(box, vertex_mean_curvature(box));
+  CHECK(corners.largest_smooth_depth(box) == 0.0);
+}
+
 // The traceless shape operator from the corner normals, against the surfaces the
 // facets approximate. A faceted cylinder's radial normals change along a chord by
 // -(chord)/R and not at all along the axis, so a wall triangle's is
