@@ -20,10 +20,8 @@ namespace tankfsi::sph {
 namespace {
 
 // Clearance tolerance, relative to L₀: far above the round-off of lattice coordinates
-// (~1e-16 of the tank size) and the smooth wall's second-order error at a facet's
-// middle (its depth there is (R² - r²)/(2R), short of R - r by sagitta²/(2R): 1.2e-4 L₀
-// for a cylinder of 32 facets at R = 10 L₀, 1.2e-3 L₀ for the generator's fewest, 12
-// facets, at R = 2 L₀), far below any geometric feature.
+// (~1e-16 of the tank size), far below any geometric feature. The smooth wall's
+// second-order error is allowed for apart (passes()).
 constexpr double clearance_tolerance = 2e-3;
 // A 2D wall face has a unit normal with |n_z| at most this; front and back faces have 1.
 constexpr double max_in_plane_normal_z = 1e-6;
@@ -84,9 +82,23 @@ bool passes(const FillWalls& walls, const FillSpec& spec, const Eigen::Vector3d&
   if (!(x[spec.dimension - 1] < spec.fill_level) || !in_region(x, spec.region, spec.dimension)) return false;
   const auto hit = walls.index.nearest(x, std::numeric_limits<double>::infinity());
   if (!hit) return false;
-  const double distance = signed_distance(x, walls.mesh, hit->triangle, hit->closest) +
-                          walls.corners.smooth_depth(walls.mesh, hit->triangle, hit->closest.barycentric);
-  return distance >= (0.5 - clearance_tolerance) * spec.spacing;
+  const double to_facet = signed_distance(x, walls.mesh, hit->triangle, hit->closest);
+  // In front of the facets, whatever the smooth wall behind them: the particles
+  // stop at the facets (a crossing is one of them, wall_crossings.hpp), and facets
+  // that lie more than L0/2 inside the smooth wall would leave the outer ring of a
+  // cylinder behind them.
+  if (!(to_facet >= clearance_tolerance * spec.spacing)) return false;
+  const double depth = walls.corners.smooth_depth(walls.mesh, hit->triangle, hit->closest.barycentric);
+  const double distance = to_facet + depth;
+  // The smooth wall's depth behind a facet is a quadratic, short of the curved
+  // wall's by its second-order error, depth^2 / (2R) at a cylinder's facet middle
+  // (largest_edge_curvature()); allowed for twice over. Without it the ring of
+  // particles L0/2 inside the smooth cylinder lost those by the facets' middles
+  // once the facets lay 0.2 L0 off it (cases/hydrostatic_3d at element_size 0.25
+  // m, 0.29 L0: 235 of the outer ring's 600), and the liquid fell into the gaps
+  // (cases/hydrostatic_3d/README.md, "Coarse facets").
+  const double second_order = depth * depth * walls.corners.largest_edge_curvature(walls.mesh, hit->triangle);
+  return distance >= (0.5 - clearance_tolerance) * spec.spacing - second_order;
 }
 
 // Lattice points that pass the level, region and clearance tests, in lattice order.

@@ -10,7 +10,9 @@
 //    facets approximate a curved one, WallCornerValues::smooth_depth, as the wall
 //    contacts measure it) is >= L₀/2 - 2e-3 L₀, i.e. x is inside and at least half a
 //    spacing from every wall (the tolerance absorbs the round-off of points exactly
-//    L₀/2 from a flat wall and the smooth wall's second-order error, filling.cpp);
+//    L₀/2 from a flat wall; the smooth wall's second-order error, depth² times its
+//    curvature, is allowed for apart, filling.cpp), and x lies in front of the
+//    nearest facet itself (by 2e-3 L₀ at least): the particles stop at the facets;
 //  - its height (y in 2D, z in 3D) is below the fill level (strictly): the particles
 //    whose cells are centred below the free surface, so the filled depth is the level
 //    rounded to a whole number of layers;

@@ -110,6 +110,17 @@ double WallCornerValues::smooth_depth(const TriangleMesh& mesh, int t, const Eig
   return depth;
 }
 
+double WallCornerValues::largest_edge_curvature(const TriangleMesh& mesh, int t) const {
+  const auto& n = normals_[at(t)];
+  double largest = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const Eigen::Vector3d edge = mesh.corner(t, j) - mesh.corner(t, i);
+    largest = std::max(largest, std::abs((n[at(j)] - n[at(i)]).dot(edge)) / edge.squaredNorm());
+  }
+  return largest;
+}
+
 double WallCornerValues::largest_smooth_depth(const TriangleMesh& mesh) const {
   constexpr int steps = 6;
   double largest = 0.0;

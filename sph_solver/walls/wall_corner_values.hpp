@@ -57,6 +57,12 @@ class WallCornerValues {
   /// this is (R^2 - r^2) / (2R), R - r to second order; on a sphere the same to
   /// the corner normals' accuracy; 0 on a flat wall.
   [[nodiscard]] double smooth_depth(const TriangleMesh& mesh, int t, const Eigen::Vector3d& w) const;
+  /// The largest normal curvature of triangle t's smooth wall along its edges,
+  /// max |(n_j - n_i).(x_j - x_i)| / |x_j - x_i|^2 (1/m): 1/R across a faceted
+  /// cylinder's chords and on a sphere, 0 on a flat wall. smooth_depth() falls
+  /// short of the distance to the curved wall by about depth^2 times half of it
+  /// (the quadratic's second-order error: sagitta^2 / (2R) on a cylinder).
+  [[nodiscard]] double largest_edge_curvature(const TriangleMesh& mesh, int t) const;
   /// The largest |smooth_depth()| of any triangle of `mesh` (m): how far the facets
   /// lie from the smooth wall they stand for (on a faceted cylinder the sagitta
   /// c^2 / (8R) of its chords c). Each triangle is sampled on the barycentric grid

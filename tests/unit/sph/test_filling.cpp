@@ -247,6 +247,54 @@ TEST_CASE("filling: rings in a cylinder hold the liquid's mass exactly and leave
   CHECK_THROWS_AS(fill_tank(tank, spec), std::invalid_argument);
 }
 
+// Twelve facets round a cylinder of R = 10 L0 lie up to R (1 - cos(pi/12)) =
+// 0.34 L0 inside it; the smooth wall's depth behind a facet's middle is short of
+// the circle's by sagitta^2 / (2R) = 0.0058 L0 there, three times the clearance's
+// round-off tolerance: without the allowance for it the outer ring lost its
+// particles by the facets' middles (240 of its 600).
+TEST_CASE("filling: rings in a coarsely faceted cylinder are kept whole", "[geometry]") {
+  const double radius = 0.5, level = 0.5, spacing = 0.05;
+  const int segments = 12;
+  const TriangleMesh tank = make_cylindrical_tank(radius, 0.7, segments, 7, 5, std::nullopt);
+  FillSpec spec;
+  spec.spacing = spacing;
+  spec.density = 1000.0;
+  spec.fill_level = level;
+  spec.cylinder_radius = radius;
+  const Particles p = fill_tank(tank, spec);
+  std::size_t expected_count = 0;
+  for (int m = 0; radius - (m + 0.5) * spacing > 0.0; ++m)
+    expected_count += static_cast<std::size_t>(
+        std::max(1L, std::lround(2.0 * std::numbers::pi * (radius - (m + 0.5) * spacing) / spacing)));
+  CHECK(p.size() == expected_count * 10);
+  double closest_facet = std::numeric_limits<double>::infinity();
+  for (const auto& x : p.position) closest_facet = std::min(closest_facet, brute_signed_distance(tank, x));
+  const double sagitta = (1.0 - std::cos(std::numbers::pi / segments)) * radius;
+  CHECK(closest_facet >= 0.5 * spacing - sagitta - 1e-12);
+  CHECK(closest_facet > 0.0);
+
+  // At R = 20 L0 the twelve facets lie 0.68 L0 inside the smooth cylinder: the
+  // outer ring, L0/2 inside it, lies behind their middles, and only the
+  // particles in front of a facet are filled (none of them behind one, from
+  // where the first step would count it as having crossed the wall).
+  const double wide = 1.0;
+  const TriangleMesh coarse = make_cylindrical_tank(wide, 0.7, segments, 7, 5, std::nullopt);
+  spec.cylinder_radius = wide;
+  const Particles q = fill_tank(coarse, spec);
+  const auto ring_size = [&](int m) {
+    return static_cast<std::size_t>(std::lround(2.0 * std::numbers::pi * (wide - (m + 0.5) * spacing) / spacing));
+  };
+  std::size_t outer = 0;
+  closest_facet = std::numeric_limits<double>::infinity();
+  for (const auto& x : q.position) {
+    closest_facet = std::min(closest_facet, brute_signed_distance(coarse, x));
+    if (std::hypot(x.x(), x.y()) > wide - spacing) ++outer;
+  }
+  CHECK(closest_facet >= 2e-3 * spacing);
+  CHECK(outer > 0);
+  CHECK(outer < ring_size(0) * 10);  // the outer ring's particles by the facets' middles are not filled
+}
+
 TEST_CASE("filling: a closed dome tank filled to the top keeps clear of roof, wall and bottom",
           "[geometry]") {
   const TriangleMesh tank = make_cylindrical_tank(1.0, 1.0, 32, 4, 3, DomeRoof{1.2, 4});

@@ -176,7 +176,7 @@ TEST_CASE("the smooth wall behind the facets: a faceted cylinder's sagitta, a sp
 // reports and warns of (fluid_run.cpp): on a faceted cylinder of n segments the
 // depth (R^2 - r^2) / (2R) (above) at a chord's middle, r = R cos(pi / n), is
 // R sin^2(pi / n) / 2 = c^2 / (8R) for the chord c = 2 R sin(pi / n); a box's is 0.
-TEST_CASE("the largest gap between facets and their smooth wall: a cylinder's chord sagitta, none in a box",
+TEST_CASE("the largest gap between facets and their smooth wall, and their curvature: a cylinder's, none in a box",
           "[wall_geometry]") {
   for (const int segments : {12, 32, 100}) {
     const double radius = 0.8;
@@ -186,11 +186,19 @@ TEST_CASE("the largest gap between facets and their smooth wall: a cylinder's ch
     const double sagitta = radius * std::pow(std::sin(std::numbers::pi / segments), 2) / 2.0;
     INFO(segments << " segments");
     CHECK(corners.largest_smooth_depth(tank) == Approx(sagitta).epsilon(1e-12));
+    // Along a chord the radial normals turn by |chord| / R: curvature 1/R; along
+    // the axis not at all; the bottom is flat.
+    for (int t = 0; t < static_cast<int>(tank.triangle_count()); ++t) {
+      const bool wall = std::abs(tank.face_normals()[at(t)].z()) < 1e-9;
+      if (wall) CHECK(corners.largest_edge_curvature(tank, t) == Approx(1.0 / radius).epsilon(1e-12));
+      if (tank.face_normals()[at(t)].z() > 0.99) CHECK(corners.largest_edge_curvature(tank, t) == 0.0);
+    }
   }
   const TriangleMesh box = make_box(Vector3d(0.0, 0.0, 0.0), Vector3d(1.0, 1.0, 0.6), NormalSide::inward);
   WallCornerValues corners(box);
   corners.update(box, vertex_mean_curvature(box));
   CHECK(corners.largest_smooth_depth(box) == 0.0);
+  for (int t = 0; t < static_cast<int>(box.triangle_count()); ++t) CHECK(corners.largest_edge_curvature(box, t) == 0.0);
 }
 
 // The traceless shape operator from the corner normals, against the surfaces the
