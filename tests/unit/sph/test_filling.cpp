@@ -58,6 +58,26 @@ void check_clearance(const TriangleMesh& mesh, const Particles& particles, doubl
   CHECK(closest == Approx(0.5 * spacing));  // the first layer touches the clearance
 }
 
+/// Water filled in rings (FillSpec::cylinder_radius) in a cylinder of `radius`.
+FillSpec water_in_rings(double radius, double level, double spacing) {
+  FillSpec spec;
+  spec.spacing = spacing;
+  spec.density = 1000.0;
+  spec.fill_level = level;
+  spec.cylinder_radius = radius;  // the smooth wall the facets approximate
+  return spec;
+}
+
+/// Particles of one layer of rings (filling.hpp): ring m at R - (m + 1/2) L0
+/// holds max(1, round(2 pi r_m / L0)).
+std::size_t ring_layer_size(double radius, double spacing) {
+  std::size_t count = 0;
+  for (int m = 0; radius - (m + 0.5) * spacing > 0.0; ++m)
+    count += static_cast<std::size_t>(
+        std::max(1L, std::lround(2.0 * std::numbers::pi * (radius - (m + 0.5) * spacing) / spacing)));
+  return count;
+}
+
 }  // namespace
 
 TEST_CASE("filling: the paper's 2D tank gets 200 × 69 = 13,800 particles in lattice order", "[geometry]") {
@@ -192,11 +212,7 @@ TEST_CASE("filling: rings in a cylinder hold the liquid's mass exactly and leave
   const double radius = 0.5, level = 0.5, spacing = 0.05;
   const int segments = 32;
   const TriangleMesh tank = make_cylindrical_tank(radius, 0.7, segments, 7, 5, std::nullopt);
-  FillSpec spec;
-  spec.spacing = spacing;
-  spec.density = 1000.0;
-  spec.fill_level = level;
-  spec.cylinder_radius = radius;  // the smooth wall the facets approximate
+  FillSpec spec = water_in_rings(radius, level, spacing);
   const Particles p = fill_tank(tank, spec);
   // The annuli partition the disc: the masses sum to rho pi R^2 H.
   double mass = 0.0;
@@ -204,10 +220,7 @@ TEST_CASE("filling: rings in a cylinder hold the liquid's mass exactly and leave
   CHECK(mass == Approx(1000.0 * std::numbers::pi * radius * radius * level).epsilon(1e-12));
   // Every annulus kept whole: no particle lost to the facets, which come closer
   // than the smooth cylinder by up to the sagitta, R (1 - cos(pi/32)) = 0.048 L0.
-  std::size_t expected_count = 0;
-  for (int m = 0; radius - (m + 0.5) * spacing > 0.0; ++m)
-    expected_count += static_cast<std::size_t>(std::max(1L, std::lround(2.0 * std::numbers::pi * (radius - (m + 0.5) * spacing) / spacing)));
-  CHECK(p.size() == expected_count * 10);  // ten layers below the level
+  CHECK(p.size() == ring_layer_size(radius, spacing) * 10);  // ten layers below the level
   // L0/2 clear of the smooth cylinder and the bottom, the outer ring and the
   // first layer touching it; inside every facet.
   double closest_side = std::numeric_limits<double>::infinity(), closest_bottom = closest_side;
@@ -256,17 +269,8 @@ TEST_CASE("filling: rings in a coarsely faceted cylinder are kept whole", "[geom
   const double radius = 0.5, level = 0.5, spacing = 0.05;
   const int segments = 12;
   const TriangleMesh tank = make_cylindrical_tank(radius, 0.7, segments, 7, 5, std::nullopt);
-  FillSpec spec;
-  spec.spacing = spacing;
-  spec.density = 1000.0;
-  spec.fill_level = level;
-  spec.cylinder_radius = radius;
-  const Particles p = fill_tank(tank, spec);
-  std::size_t expected_count = 0;
-  for (int m = 0; radius - (m + 0.5) * spacing > 0.0; ++m)
-    expected_count += static_cast<std::size_t>(
-        std::max(1L, std::lround(2.0 * std::numbers::pi * (radius - (m + 0.5) * spacing) / spacing)));
-  CHECK(p.size() == expected_count * 10);
+  const Particles p = fill_tank(tank, water_in_rings(radius, level, spacing));
+  CHECK(p.size() == ring_layer_size(radius, spacing) * 10);
   double closest_facet = std::numeric_limits<double>::infinity();
   for (const auto& x : p.position) closest_facet = std::min(closest_facet, brute_signed_distance(tank, x));
   const double sagitta = (1.0 - std::cos(std::numbers::pi / segments)) * radius;
@@ -279,11 +283,8 @@ TEST_CASE("filling: rings in a coarsely faceted cylinder are kept whole", "[geom
   // where the first step would count it as having crossed the wall).
   const double wide = 1.0;
   const TriangleMesh coarse = make_cylindrical_tank(wide, 0.7, segments, 7, 5, std::nullopt);
-  spec.cylinder_radius = wide;
-  const Particles q = fill_tank(coarse, spec);
-  const auto ring_size = [&](int m) {
-    return static_cast<std::size_t>(std::lround(2.0 * std::numbers::pi * (wide - (m + 0.5) * spacing) / spacing));
-  };
+  const Particles q = fill_tank(coarse, water_in_rings(wide, level, spacing));
+  const auto outer_ring_size = static_cast<std::size_t>(std::lround(2.0 * std::numbers::pi * (wide - 0.5 * spacing) / spacing));
   std::size_t outer = 0;
   closest_facet = std::numeric_limits<double>::infinity();
   for (const auto& x : q.position) {
@@ -292,7 +293,7 @@ TEST_CASE("filling: rings in a coarsely faceted cylinder are kept whole", "[geom
   }
   CHECK(closest_facet >= 2e-3 * spacing);
   CHECK(outer > 0);
-  CHECK(outer < ring_size(0) * 10);  // the outer ring's particles by the facets' middles are not filled
+  CHECK(outer < outer_ring_size * 10);  // the outer ring's particles by the facets' middles are not filled
 }
 
 TEST_CASE("filling: a closed dome tank filled to the top keeps clear of roof, wall and bottom",
