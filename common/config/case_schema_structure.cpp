@@ -47,7 +47,9 @@ std::vector<KeySpec> structure_mesh_keys() {
       real_key("structure.mesh.dome_radius",
                "Tank: radius of the spherical dome roof (at least the tank radius); 0: an open top, no roof.")
           .unit_is("m").is_required().at_least(0).only_when("structure.mesh.type", {"tank"}),
-      real_key("structure.mesh.element_size", "Tank: target element edge length.")
+      real_key("structure.mesh.element_size",
+               "Tank: target element edge length. In a coupled run the wetted surface is the fluid's wall: the "
+               "fluid program warns when its facets lie far from the smooth wall (fluid.geometry.element_size).")
           .unit_is("m").is_required().above(0).only_when("structure.mesh.type", {"tank"}),
       real_key("structure.mesh.liquid_level",
                "Tank: height of the still liquid; wall elements below it and the bottom form the set 'wetted'.")
