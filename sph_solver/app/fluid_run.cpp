@@ -288,9 +288,10 @@ struct LoopState {
 /// liquid at rest stirring. Measured (2 ranks, 1 s; cases/hydrostatic_2d/README.md
 /// and cases/hydrostatic_3d/README.md, "Coarse facets"): a 2D tank with a
 /// half-circle floor on the square lattice, the largest speed over 0.5-1 s 0.09
-/// m/s with its facets 0.0075 L0 off the smooth wall, 0.12-0.16 m/s at 0.03 L0,
-/// 0.36 m/s at 0.06 L0, 0.62 m/s at 0.12 L0, 1.1 m/s at 0.24 L0 (the last three
-/// growing); the cylindrical tank at rest, filled in rings, the same as with
+/// m/s with its facets 0.0075 L0 off the smooth wall, 0.12 m/s at 0.015 L0,
+/// 0.16 m/s at 0.03 L0, 0.36 m/s at 0.06 L0, 0.62 m/s at 0.12 L0, 1.1 m/s at
+/// 0.24 L0 (the last three growing); the cylindrical tank at rest, filled in
+/// rings, the same as with
 /// its fine wall (0.09-0.11 m/s) up to 0.44 L0, while at 0.53 L0 its first ring,
 /// L0/2 inside the smooth wall, lies behind the facets' middles: those particles
 /// are not filled, the liquid falls into their places (0.37 m/s) and particles
