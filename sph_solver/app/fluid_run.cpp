@@ -291,12 +291,12 @@ struct LoopState {
 /// m/s with its facets 0.0075 L0 off the smooth wall, 0.12 m/s at 0.015 L0,
 /// 0.16 m/s at 0.03 L0, 0.36 m/s at 0.06 L0, 0.62 m/s at 0.12 L0, 1.1 m/s at
 /// 0.24 L0 (the last three growing); the cylindrical tank at rest, filled in
-/// rings, the same as with
-/// its fine wall (0.09-0.11 m/s) up to 0.44 L0, while at 0.53 L0 its first ring,
-/// L0/2 inside the smooth wall, lies behind the facets' middles: those particles
-/// are not filled, the liquid falls into their places (0.37 m/s) and particles
-/// are put back in front of the facets. Finer facets are the remedy (in a
-/// coupled run a finer structural mesh: its surface is the wall).
+/// rings, the same as with its fine wall (0.09-0.11 m/s) up to 0.44 L0, while
+/// at 0.53 L0 its first ring, L0/2 inside the smooth wall, lies behind the
+/// facets' middles: those particles are not filled, the liquid falls into
+/// their places (0.37 m/s) and particles are put back in front of the facets.
+/// Finer facets are the remedy (in a coupled run a finer structural mesh: its
+/// surface is the wall).
 double facet_gap_in_spacings(ProgramContext& context, const WallModel& walls, const FluidModel& model) {
   const bool two_d = model.dimension == 2;
   const double harmless = two_d ? 0.05 : 0.45;
